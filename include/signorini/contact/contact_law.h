@@ -1,0 +1,273 @@
+#ifndef signorini_contact_contact_law_h
+#define signorini_contact_contact_law_h
+
+#include <deal.II/base/tensor.h>
+
+#include <array>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using namespace dealii;
+
+    /**
+     * Status of one contact point, see formulation.md sections 3.1 and 3.2.
+     *
+     * A point is `free` iff it is not in contact. An in-contact point is
+     * `stick` or `slip` according to the friction test |h| <= 1 of section
+     * 3.2. Points without an active friction law (mu == 0, or a zero friction
+     * threshold, section 3.3) offer no tangential resistance and are reported
+     * as `slip`; PointResponse::friction_active tells the two cases apart.
+     */
+    enum class PointStatus
+    {
+      free,
+      stick,
+      slip
+    };
+
+    /**
+     * Human-readable name of a status ("free", "stick", "slip"), for logs.
+     */
+    const char *
+    to_string(const PointStatus status);
+
+
+    /**
+     * Coefficients of the augmented Lagrangian contact law (formulation.md
+     * sections 3 and 4). Units assume lambda is a pressure [Pa] and
+     * displacements are in [m]. They are expected to be validated where they
+     * are parsed; evaluate_contact_law() only checks them in debug mode.
+     */
+    struct LawParameters
+    {
+      /**
+       * Normal augmentation coefficient rho_n [Pa/m], > 0. In the penalty
+       * variant this is the penalty stiffness eps_n [Pa/m].
+       */
+      double rho_n;
+
+      /**
+       * Tangential augmentation coefficient rho_t [1/m], > 0 (Lambda is
+       * dimensionless, so rho_t v must be). Only used if mu > 0.
+       */
+      double rho_t;
+
+      /**
+       * Coulomb coefficient mu [-], >= 0. mu == 0 means frictionless: every
+       * friction density and derivative is zero and the assembly must not
+       * create Lambda rows at all (section 4, last paragraph).
+       */
+      double mu;
+
+      /**
+       * true: lambda_f = current lambda (Newton on the threshold, section
+       * 3.3, the default); false: lambda_f = PointState::lambda_f_frozen.
+       */
+      bool threshold_newton = true;
+
+      /**
+       * Only meaningful if threshold_newton. true: keep K_fc (dr_f/dlambda)
+       * of section 5, giving the exact Jacobian. false: drop K_fc as
+       * code_aster does (it vanishes at the solution). K_ec / K_mc
+       * (the mu P_B(h) part of dforce/dlambda) are always kept: they do not
+       * vanish at the solution and are part of code_aster's matrix too.
+       */
+      bool threshold_coupling = true;
+
+      /**
+       * Penalty variant of section 4 for the normal part: force = eps_n g n
+       * with eps_n = rho_n, active iff g > 0; lambda becomes a
+       * post-processed value driven to -eps_n max(g, 0). Friction keeps the
+       * augmented Lagrangian law with lambda_f as above.
+       */
+      bool penalty = false;
+    };
+
+
+    /**
+     * Everything known at one contact point for the current Newton iterate
+     * (formulation.md section 2); pairing, n and T are frozen inside a
+     * geometric iteration.
+     */
+    template <int dim>
+    struct PointState
+    {
+      /**
+       * Unit normal n of the master surface, pointing into the master body.
+       */
+      Tensor<1, dim> normal;
+
+      /**
+       * Orthonormal tangent basis tau_k (columns of T), orthogonal to n.
+       * Lambda is expressed in this basis. See tangent_basis().
+       */
+      std::array<Tensor<1, dim>, dim - 1> tangents;
+
+      /**
+       * Gap g [m] at the current iterate, g_0 included; g > 0 means
+       * interpenetration.
+       */
+      double gap;
+
+      /**
+       * Slip increment v = P (Delta u^e - Delta u^m) [m] at the current
+       * iterate (a tangent vector).
+       */
+      Tensor<1, dim> slip;
+
+      /**
+       * Contact multiplier lambda [Pa] at the point, <= 0 in compression.
+       */
+      double lambda;
+
+      /**
+       * Friction semi-multiplier Lambda [-] in tangent coordinates. Ignored if
+       * mu == 0.
+       */
+      Tensor<1, dim - 1> Lambda;
+
+      /**
+       * Frozen friction threshold lambda_f [Pa], used only when
+       * LawParameters::threshold_newton is false.
+       */
+      double lambda_f_frozen = 0.;
+    };
+
+
+    /**
+     * Residual densities at one contact point and their exact derivatives
+     * (formulation.md sections 4 and 5) with respect to the point variables
+     *   d = u^e(xi^e) - u^m(xi^m)   (relative displacement, dg/dd = n,
+     *                                dv/dd = P),
+     *   lambda, Lambda.
+     *
+     * The assembly multiplies by the weight w and shape functions:
+     *   R^e_i += w N^e_i force ;  R^m_j -= w N^m_j force ;
+     *   R^c_l += w psi_l r_c   ;  R^f_l += w psi_l r_f   ;
+     * and, by the chain rule (the sign of a master shape function is minus
+     * the slave one in both rows and columns, because d = u^e - u^m):
+     *   K_ee = +w N^e_i N^e_j dforce_dd ;   K_em = -w N^e_i N^m_j dforce_dd ;
+     *   K_me = -w N^m_i N^e_j dforce_dd ;   K_mm = +w N^m_i N^m_j dforce_dd ;
+     *   K_ec = +w N^e_i psi_l dforce_dlambda ;  K_mc = -w N^m_i ... ;
+     *   K_ef = +w N^e_i psi_l dforce_dLambda[k] (column k) ; K_mf = -... ;
+     *   K_ce = +w psi_l N^e_j drc_dd ; K_cm = -w psi_l N^m_j drc_dd ;
+     *   K_cc = +w psi_l psi_m drc_dlambda ;  K_cf = 0 ;
+     *   K_fe = +w psi_l N^e_j drf_dd[k] (row k) ; K_fm = -... ;
+     *   K_fc = +w psi_l psi_m drf_dlambda ; K_ff = +w psi_l psi_m drf_dLambda.
+     *
+     * Units (lambda in [Pa], d in [m]): force [Pa], r_c [m], r_f [m] if the
+     * point has an active friction law, [-] otherwise (Lambda itself).
+     * When mu == 0 all friction entries are zero and must not be assembled.
+     */
+    template <int dim>
+    struct PointResponse
+    {
+      PointStatus status;
+
+      /**
+       * chi_c of section 3.1 (penalty: g > 0).
+       */
+      bool in_contact;
+
+      /**
+       * true iff the friction rows carry the stick/slip law (mu > 0,
+       * in contact, lambda_f != 0); false means they carry r_f = Lambda
+       * (free point or zero threshold, section 3.3) or nothing (mu == 0).
+       */
+      bool friction_active;
+
+      /**
+       * Friction threshold lambda_f [Pa] actually used (section 3.3); 0 if
+       * mu == 0.
+       */
+      double lambda_f;
+
+      /**
+       * Force density on the slave side, (L_c^e + L_f^e) / (w N^e_i) of
+       * section 4 [Pa].
+       */
+      Tensor<1, dim> force;
+
+      /**
+       * Signorini row density [m] (L_c^c / (w psi_l)).
+       */
+      double r_c;
+
+      /**
+       * Coulomb row density, tangent coordinates (L_f^f / (w psi_l)).
+       */
+      Tensor<1, dim - 1> r_f;
+
+      /**
+       * d force / d d [Pa/m].
+       */
+      Tensor<2, dim> dforce_dd;
+
+      /**
+       * d force / d lambda [-].
+       */
+      Tensor<1, dim> dforce_dlambda;
+
+      /**
+       * dforce_dLambda[k] = d force / d Lambda_k [Pa]: column k of the
+       * dim x (dim-1) block.
+       */
+      std::array<Tensor<1, dim>, dim - 1> dforce_dLambda;
+
+      /**
+       * d r_c / d d [-]. (d r_c / d Lambda is identically zero.)
+       */
+      Tensor<1, dim> drc_dd;
+
+      /**
+       * d r_c / d lambda [m/Pa].
+       */
+      double drc_dlambda;
+
+      /**
+       * drf_dd[k] = d (r_f)_k / d d: row k of the (dim-1) x dim block.
+       */
+      std::array<Tensor<1, dim>, dim - 1> drf_dd;
+
+      /**
+       * d r_f / d lambda.
+       */
+      Tensor<1, dim - 1> drf_dlambda;
+
+      /**
+       * drf_dLambda[k][l] = d (r_f)_k / d Lambda_l.
+       */
+      Tensor<2, dim - 1> drf_dLambda;
+    };
+
+
+    /**
+     * Orthonormal tangent basis for the unit normal @p n (formulation.md
+     * section 2). 2D: tau_1 = (n_y, -n_x). 3D: tau_1 is the normalised
+     * cross product of n with the coordinate axis least aligned with n,
+     * tau_2 = n x tau_1, so that (tau_1, tau_2, n) is right-handed (as
+     * (tau_1, n) is in 2D). The 3D choice is piecewise smooth in n: if n
+     * changes between geometric iterations so that the least aligned axis
+     * changes, T rotates, and Lambda must be re-expressed in the new basis.
+     */
+    template <int dim>
+    std::array<Tensor<1, dim>, dim - 1>
+    tangent_basis(const Tensor<1, dim> &n);
+
+
+    /**
+     * Evaluate the contact law at one point: statuses of sections 3.1-3.3,
+     * residual densities of section 4 and their exact derivatives of section
+     * 5 (with n and T frozen). Pure function: no deal.II assembly.
+     */
+    template <int dim>
+    PointResponse<dim>
+    evaluate_contact_law(const PointState<dim> &state,
+                         const LawParameters   &parameters);
+
+  } // namespace Contact
+} // namespace Signorini
+
+#endif

@@ -1,0 +1,250 @@
+#ifndef signorini_core_parameters_h
+#define signorini_core_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+/**
+ * Input parameters of a Signorini run, one small struct per subsection of the
+ * parameter file (the step-44 pattern): each has declare_parameters() and
+ * parse_parameters(). Selections are parsed once into enum classes.
+ *
+ * Numbered subsections (Body 1, Material 1, Dirichlet 1, ...) are declared as
+ * many times as the matching "Number of ..." entry says; that count is read by
+ * a tolerant pre-pass over the file (read_counts()) before the strict parse.
+ *
+ * Units: the code is unit-agnostic; the documentation strings quote SI units,
+ * any consistent set (e.g. mm-N-MPa) works.
+ */
+namespace Signorini
+{
+  using namespace dealii;
+
+  /**
+   * Everything a user can get wrong in the input ends in this exception; its
+   * message names the subsection/parameter and what to change. main() prints
+   * it once and exits non-zero.
+   */
+  class InputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /** Counts of the numbered subsections, read before the strict parse. */
+  struct Counts
+  {
+    unsigned int n_bodies    = 1;
+    unsigned int n_materials = 1;
+    unsigned int n_dirichlet = 1;
+    unsigned int n_neumann   = 0;
+  };
+
+  enum class BodyShape
+  {
+    block,
+    ball_segment,
+    cylinder_segment,
+    file
+  };
+
+  enum class Segment
+  {
+    full,
+    half,
+    quarter
+  };
+
+  /** One body: a generated shape or a mesh file (subsection Geometry/Body k). */
+  struct BodyParameters
+  {
+    BodyShape                shape;
+    std::vector<double>      lower_corner, upper_corner;
+    std::vector<unsigned int> subdivisions;
+    std::vector<double>      centre;
+    double                   radius;
+    Segment                  segment;
+    double                   length;
+    std::string              mesh_file;
+    std::map<unsigned int, unsigned int> boundary_id_map;
+    std::vector<unsigned int> boundary_ids;
+    int                      material_id;
+    std::vector<double>      shift;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct GeometryParameters
+  {
+    unsigned int                global_refinements;
+    std::vector<BodyParameters> bodies;
+
+    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
+  };
+
+  struct MaterialParameters
+  {
+    unsigned int material_id;
+    double       youngs_modulus;
+    double       poissons_ratio;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  /** A Dirichlet condition on some components of one boundary (or one point of it). */
+  struct DirichletParameters
+  {
+    std::vector<unsigned int> boundary_ids;
+    std::vector<unsigned int> components;
+    std::vector<std::string>  values; // one expression per entry of components
+    std::vector<double>       at_point; // empty: the whole boundary
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  enum class NeumannType
+  {
+    traction,
+    pressure
+  };
+
+  struct NeumannParameters
+  {
+    std::vector<unsigned int> boundary_ids;
+    NeumannType              type;
+    std::vector<std::string> values; // dim expressions (traction) or 1 (pressure)
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct BoundaryConditionParameters
+  {
+    std::vector<DirichletParameters> dirichlet;
+    std::vector<NeumannParameters>   neumann;
+    std::vector<std::string>         body_force;
+    std::map<std::string, double>    constants;
+
+    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
+  };
+
+  struct LoadSteppingParameters
+  {
+    std::vector<double> step_times; // end times of the steps, increasing
+    unsigned int        max_cuts;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct NewtonParameters
+  {
+    unsigned int max_iterations;
+    double       relative_tolerance;
+    double       absolute_tolerance;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  enum class LinearSolverType
+  {
+    direct,
+    cg,
+    gmres
+  };
+
+  struct LinearSolverParameters
+  {
+    LinearSolverType type;
+    std::string      direct_package; // Amesos name, e.g. "Amesos_Mumps"
+    double           relative_tolerance;
+    unsigned int     max_iterations;
+    bool             rigid_body_modes;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  enum class Verbosity
+  {
+    quiet,
+    normal,
+    verbose
+  };
+
+  struct OutputParameters
+  {
+    std::string directory;
+    bool        write_vtu;
+    bool        write_csv;
+    bool        timing_summary;
+    Verbosity   verbosity;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Optional exact solution the run compares itself against (verification). */
+  struct ReferenceParameters
+  {
+    std::vector<std::string> displacement; // empty: no reference
+    std::vector<std::string> stress;       // dim*dim expressions, row-major
+    double                   tolerance;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct Parameters
+  {
+    unsigned int                dimension;
+    unsigned int                fe_degree;
+    GeometryParameters          geometry;
+    std::vector<MaterialParameters> materials;
+    BoundaryConditionParameters boundary_conditions;
+    LoadSteppingParameters      load_stepping;
+    NewtonParameters            newton;
+    LinearSolverParameters      linear_solver;
+    OutputParameters            output;
+    ReferenceParameters         reference;
+    std::string                 input_directory = "."; // for relative mesh paths
+
+    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
+
+    /** Checks across subsections that patterns cannot express. */
+    void check_consistency() const;
+  };
+
+  /**
+   * Reads and checks a parameter file. Throws InputError with a message naming
+   * file, line, subsection and parameter. On success @p prm holds the full,
+   * declared parameter set (for echoing into the output directory).
+   */
+  Parameters read_parameters(const std::string &filename, ParameterHandler &prm);
+
+  /** Same from a string (used by unit tests and the library interface). */
+  Parameters read_parameters_from_string(const std::string &text,
+                                         ParameterHandler & prm);
+
+  /** Splits "a; b; c" into trimmed expressions (empty string -> empty list). */
+  std::vector<std::string> split_expressions(const std::string &text);
+
+  /** A point of dimension @p dim from a list of numbers, with a clear error. */
+  template <int dim>
+  Point<dim> to_point(const std::vector<double> &values,
+                      const std::string &        where);
+} // namespace Signorini
+
+#endif

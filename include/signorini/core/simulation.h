@@ -1,0 +1,139 @@
+#ifndef signorini_core_simulation_h
+#define signorini_core_simulation_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <signorini/core/parameters.h>
+#include <signorini/material/elastic_material.h>
+#include <signorini/solver/linear_solver.h>
+
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+/**
+ * One Signorini run: mesh, finite element space, quasi-static load stepping
+ * with a Newton loop per step, output. The residual convention is the one of
+ * formulation.md section 4: R = F_int - F_ext, Newton solves K dU = -R, with
+ * Dirichlet values imposed on the iterate and homogeneous constraints on the
+ * update. A step that does not converge is halved and retried (Load
+ * stepping/Maximum step cuts) before the run stops with a RunError.
+ */
+namespace Signorini
+{
+  using namespace dealii;
+
+  /** A run that must stop (not a user input problem): says where and why. */
+  class RunError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  template <int dim>
+  class Simulation
+  {
+  public:
+    Simulation(const Parameters &      parameters,
+               const ParameterHandler &prm,
+               const MPI_Comm          mpi_communicator);
+    ~Simulation();
+
+    void
+    run();
+
+    /** Errors against the Reference solution subsection (negative: none). */
+    struct ReferenceErrors
+    {
+      double displacement_l2_relative = -1;
+      double stress_max_relative      = -1;
+    };
+    ReferenceErrors
+    reference_errors() const
+    {
+      return errors;
+    }
+
+    types::global_dof_index
+    n_dofs() const
+    {
+      return dof_handler.n_dofs();
+    }
+
+  private:
+    void
+    make_mesh();
+    void
+    check_input_against_mesh() const;
+    void
+    setup_system();
+    void
+    make_constraints(const double time);
+    void
+    assemble(const bool with_matrix);
+    bool
+    solve_load_step(const double time, unsigned int &n_iterations);
+    void
+    compute_reactions();
+    void
+    compute_reference_errors(const double time);
+    void
+    output_results(const unsigned int step, const double time);
+    void
+    write_statistics(const unsigned int step,
+                     const double       time,
+                     const unsigned int newton_iterations);
+
+    const Parameters &      parameters;
+    const ParameterHandler &prm;
+    MPI_Comm                mpi_communicator;
+    ConditionalOStream      pcout;
+    TimerOutput             timer;
+
+    parallel::distributed::Triangulation<dim> triangulation;
+    FESystem<dim>                             fe;
+    DoFHandler<dim>                           dof_handler;
+    IndexSet                                  locally_owned, locally_relevant;
+
+    std::map<types::material_id, Material::ElasticMaterial<dim>> materials;
+
+    // Expressions of the loads and Dirichlet data, functions of (x, t).
+    std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> neumann_functions;
+    std::unique_ptr<FunctionParser<dim>>              body_force;
+
+    AffineConstraints<double> constraints_values; // hanging + Dirichlet(t)
+    AffineConstraints<double> constraints_update; // hanging + zero Dirichlet
+    // Locally owned (DoF, component) pairs each Dirichlet condition constrains.
+    std::vector<std::vector<std::pair<types::global_dof_index, unsigned int>>>
+      dirichlet_dofs;
+
+    TrilinosWrappers::SparseMatrix system_matrix;
+    TrilinosWrappers::MPI::Vector  solution;     // ghosted, current iterate
+    TrilinosWrappers::MPI::Vector  newton_rhs;   // -R on free DoFs
+    TrilinosWrappers::MPI::Vector  internal_force, external_force; // no constraints
+
+    std::unique_ptr<Solver::LinearSolver<dim>> linear_solver;
+
+    double                           force_scale = 0;
+    std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
+    ReferenceErrors                  errors;
+    std::vector<std::pair<double, std::string>> pvtu_records;
+    std::vector<std::vector<std::string>>       statistics_rows;
+  };
+
+  /** Reads @p filename, dispatches on Dimension and runs; used by main(). */
+  void
+  run_from_file(const std::string &filename, const MPI_Comm mpi_communicator);
+} // namespace Signorini
+
+#endif

@@ -1,0 +1,91 @@
+#ifndef signorini_material_elastic_material_h
+#define signorini_material_elastic_material_h
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <signorini/core/parameters.h>
+
+#include <map>
+
+/**
+ * Isotropic small-strain linear elasticity, sigma = lambda tr(eps) I + 2 mu
+ * eps [Pa]. In 2D the model is plane strain: eps_zz = 0 and the out-of-plane
+ * stress sigma_zz = lambda tr(eps) enters the von Mises stress.
+ */
+namespace Signorini
+{
+  namespace Material
+  {
+    using namespace dealii;
+
+    template <int dim>
+    class ElasticMaterial
+    {
+    public:
+      ElasticMaterial() = default;
+      ElasticMaterial(const double youngs_modulus, const double poissons_ratio)
+        : E(youngs_modulus)
+        , nu(poissons_ratio)
+        , lambda(E * nu / ((1 + nu) * (1 - 2 * nu)))
+        , mu(E / (2 * (1 + nu)))
+      {
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
+                C[i][j][k][l] = (i == j && k == l ? lambda : 0.) +
+                                ((i == k && j == l) ? mu : 0.) +
+                                ((i == l && j == k) ? mu : 0.);
+      }
+
+      SymmetricTensor<2, dim>
+      stress(const SymmetricTensor<2, dim> &strain) const
+      {
+        return lambda * trace(strain) * unit_symmetric_tensor<dim>() +
+               2 * mu * strain;
+      }
+
+      /** von Mises stress including sigma_zz of plane strain in 2D. */
+      double
+      von_mises(const SymmetricTensor<2, dim> &strain) const
+      {
+        const SymmetricTensor<2, dim> s = stress(strain);
+        double szz = (dim == 2 ? lambda * trace(strain) : 0.);
+        double sxx = s[0][0], syy = s[1][1];
+        double sz  = dim == 3 ? s[dim - 1][dim - 1] : szz;
+        double shear2 = s[0][1] * s[0][1];
+        if constexpr (dim == 3)
+          shear2 += s[0][2] * s[0][2] + s[1][2] * s[1][2];
+        return std::sqrt(0.5 * ((sxx - syy) * (sxx - syy) +
+                                (syy - sz) * (syy - sz) +
+                                (sz - sxx) * (sz - sxx)) +
+                         3 * shear2);
+      }
+
+      const SymmetricTensor<4, dim> &
+      stiffness() const
+      {
+        return C;
+      }
+
+      double E = 0, nu = 0, lambda = 0, mu = 0;
+
+    private:
+      SymmetricTensor<4, dim> C;
+    };
+
+    /** Materials by material id, built from the Materials subsection. */
+    template <int dim>
+    std::map<types::material_id, ElasticMaterial<dim>>
+    make_materials(const Parameters &parameters)
+    {
+      std::map<types::material_id, ElasticMaterial<dim>> result;
+      for (const auto &m : parameters.materials)
+        result.emplace(m.material_id,
+                       ElasticMaterial<dim>(m.youngs_modulus, m.poissons_ratio));
+      return result;
+    }
+  } // namespace Material
+} // namespace Signorini
+
+#endif

@@ -1,0 +1,91 @@
+#ifndef signorini_postprocess_stress_postprocessor_h
+#define signorini_postprocess_stress_postprocessor_h
+
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <signorini/material/elastic_material.h>
+
+#include <map>
+
+/**
+ * Cauchy stress components [Pa] and the von Mises stress for DataOut, from
+ * the displacement gradient and the material of each cell (by material id).
+ * In 2D (plane strain) stress_zz is written too.
+ */
+namespace Signorini
+{
+  namespace Postprocess
+  {
+    using namespace dealii;
+
+    template <int dim>
+    class StressPostprocessor : public DataPostprocessor<dim>
+    {
+    public:
+      explicit StressPostprocessor(
+        const std::map<types::material_id, Material::ElasticMaterial<dim>>
+          &materials)
+        : materials(materials)
+      {}
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        std::vector<std::string> names;
+        const char *axis[] = {"x", "y", "z"};
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            names.push_back(std::string("stress_") + axis[i] + axis[j]);
+        if (dim == 2)
+          names.push_back("stress_zz");
+        names.push_back("von_mises");
+        return names;
+      }
+
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      get_data_component_interpretation() const override
+      {
+        return std::vector<
+          DataComponentInterpretation::DataComponentInterpretation>(
+          get_names().size(), DataComponentInterpretation::component_is_scalar);
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_gradients;
+      }
+
+      void
+      evaluate_vector_field(
+        const DataPostprocessorInputs::Vector<dim> &inputs,
+        std::vector<Vector<double>> &computed) const override
+      {
+        const auto  cell = inputs.template get_cell<dim>();
+        const auto &material = materials.at(cell->material_id());
+        for (unsigned int q = 0; q < computed.size(); ++q)
+          {
+            SymmetricTensor<2, dim> strain;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
+                                      inputs.solution_gradients[q][j][i]);
+            const SymmetricTensor<2, dim> stress = material.stress(strain);
+            unsigned int                  k      = 0;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                computed[q][k++] = stress[i][j];
+            if (dim == 2)
+              computed[q][k++] = material.lambda * trace(strain);
+            computed[q][k] = material.von_mises(strain);
+          }
+      }
+
+    private:
+      const std::map<types::material_id, Material::ElasticMaterial<dim>>
+        &materials;
+    };
+  } // namespace Postprocess
+} // namespace Signorini
+
+#endif

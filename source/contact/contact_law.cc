@@ -1,0 +1,296 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
+
+#include <signorini/contact/contact_law.h>
+
+#include <cmath>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      template <int dim>
+      Tensor<2, dim>
+      identity_tensor()
+      {
+        Tensor<2, dim> identity;
+        for (unsigned int i = 0; i < dim; ++i)
+          identity[i][i] = 1.;
+        return identity;
+      }
+    } // namespace
+
+    const char *
+    to_string(const PointStatus status)
+    {
+      switch (status)
+        {
+          case PointStatus::free:
+            return "free";
+          case PointStatus::stick:
+            return "stick";
+          case PointStatus::slip:
+            return "slip";
+        }
+      Assert(false, ExcInternalError());
+      return "unknown";
+    }
+
+
+
+    template <int dim>
+    std::array<Tensor<1, dim>, dim - 1>
+    tangent_basis(const Tensor<1, dim> &n)
+    {
+      static_assert(dim == 2 || dim == 3, "Only dim = 2 and 3 are supported.");
+      Assert(std::abs(n.norm() - 1.) < 1e-10,
+             ExcMessage("The normal passed to tangent_basis() must be a unit "
+                        "vector."));
+
+      std::array<Tensor<1, dim>, dim - 1> tangents;
+      if constexpr (dim == 2)
+        {
+          // Section 2 fixes this choice, so that Lambda has the same meaning
+          // for every code that rebuilds T from n.
+          tangents[0][0] = n[1];
+          tangents[0][1] = -n[0];
+        }
+      else
+        {
+          // Crossing n with the axis least aligned with it keeps the cross
+          // product's norm >= sqrt(2/3): no cancellation, whatever n is.
+          unsigned int axis = 0;
+          for (unsigned int i = 1; i < dim; ++i)
+            if (std::abs(n[i]) < std::abs(n[axis]))
+              axis = i;
+          Tensor<1, dim> e;
+          e[axis] = 1.;
+
+          tangents[0] = cross_product_3d(n, e);
+          tangents[0] /= tangents[0].norm();
+          // (tau_1, tau_2, n) right-handed, like (tau_1, n) in 2D.
+          tangents[1] = cross_product_3d(n, tangents[0]);
+        }
+      return tangents;
+    }
+
+
+
+    template <int dim>
+    PointResponse<dim>
+    evaluate_contact_law(const PointState<dim> &state,
+                         const LawParameters   &parameters)
+    {
+      Assert(parameters.rho_n > 0., ExcMessage("rho_n must be positive."));
+      Assert(parameters.mu >= 0., ExcMessage("mu must be non-negative."));
+      Assert(parameters.mu == 0. || parameters.rho_t > 0.,
+             ExcMessage("rho_t must be positive when mu > 0."));
+      Assert(std::abs(state.normal.norm() - 1.) < 1e-10,
+             ExcMessage("The normal must be a unit vector."));
+      AssertIsFinite(state.gap);
+      AssertIsFinite(state.lambda);
+
+      const Tensor<1, dim> &n     = state.normal;
+      const double          rho_n = parameters.rho_n;
+
+      // P = I - n (x) n (section 2); dv/dd = P.
+      const Tensor<2, dim> P = identity_tensor<dim>() - outer_product(n, n);
+
+      // Everything starts at zero: deal.II tensors are zero-initialised, so
+      // only nonzero contributions are written below.
+      PointResponse<dim> response;
+      response.status          = PointStatus::free;
+      response.in_contact      = false;
+      response.friction_active = false;
+      response.lambda_f        = 0.;
+      response.r_c             = 0.;
+      response.drc_dlambda     = 0.;
+
+      // ---------------------------------------------------------------
+      // Normal part: sections 3.1, 4 (L_c rows), 5 ("Contact").
+      // ---------------------------------------------------------------
+      if (!parameters.penalty)
+        {
+          // Section 3.1: contact iff lambda_aug < 0 (strict: lambda_aug == 0
+          // is the kink, assigned to the free side).
+          const double lambda_aug = state.lambda - rho_n * state.gap;
+          response.in_contact     = (lambda_aug < 0.);
+
+          if (response.in_contact)
+            {
+              // L_c^e = -w N^e lambda_aug n, L_c^c = -w psi g.
+              response.force          = -lambda_aug * n;
+              response.dforce_dd      = rho_n * outer_product(n, n);
+              response.dforce_dlambda = -n;
+              response.r_c            = -state.gap;
+              response.drc_dd         = -n;
+              response.drc_dlambda    = 0.;
+            }
+          else
+            {
+              // L_c^c = -w psi lambda / rho_n drives lambda to 0 (K_cc).
+              response.r_c         = -state.lambda / rho_n;
+              response.drc_dlambda = -1. / rho_n;
+            }
+        }
+      else
+        {
+          // Penalty variant (section 4, last paragraph), eps_n = rho_n. The
+          // force eps_n g n plays the role of -lambda_aug n, so it has the
+          // same sign convention (a pressure pushing the slave out of the
+          // master, +n in the residual since R = F_int - F_ext + R_c). It is
+          // active iff that pressure is positive, g > 0. The lambda row
+          //   r_c = -(lambda + chi_c eps_n g) / eps_n
+          // only post-processes lambda -> -eps_n max(g, 0) with the sign of
+          // the Lagrangian law (lambda <= 0 in compression) and keeps the
+          // lambda block nonsingular; the force does not depend on lambda.
+          response.in_contact = (state.gap > 0.);
+          response.r_c         = -state.lambda / rho_n;
+          response.drc_dlambda = -1. / rho_n;
+
+          if (response.in_contact)
+            {
+              response.force     = rho_n * state.gap * n;
+              response.dforce_dd = rho_n * outer_product(n, n);
+              response.r_c -= state.gap;
+              response.drc_dd = -n;
+            }
+        }
+
+      response.status =
+        (response.in_contact ? PointStatus::slip : PointStatus::free);
+
+      // ---------------------------------------------------------------
+      // Friction: sections 3.2, 3.3, 4 (L_f rows), 5 ("Friction").
+      // ---------------------------------------------------------------
+      // mu == 0: no friction unknowns at all (section 4), everything stays 0.
+      if (parameters.mu == 0.)
+        return response;
+
+      const double mu    = parameters.mu;
+      const double rho_t = parameters.rho_t;
+      const auto  &T     = state.tangents;
+
+      // Section 3.3: Newton on the threshold (lambda_f = lambda, default) or
+      // frozen threshold. No clamping of the sign of lambda_f: the formulas
+      // of sections 4-5 are applied as written, which keeps the Jacobian the
+      // exact derivative also at iterates where an in-contact point has
+      // lambda > 0.
+      const double lambda_f =
+        (parameters.threshold_newton ? state.lambda : state.lambda_f_frozen);
+      const bool lambda_depends = parameters.threshold_newton;
+      response.lambda_f         = lambda_f;
+
+      // Section 3.3: in contact with lambda_f == 0 exactly is treated as a
+      // free point for friction, otherwise K_ff = 0 (stick) or
+      // (mu lambda_f / rho_t)(...) = 0 (slip) would make the f block
+      // singular. The comparison is exact on purpose: this is the value a
+      // point carries right after it closes (lambda or the frozen threshold
+      // still 0), any nonzero value gives a regular block.
+      response.friction_active = response.in_contact && (lambda_f != 0.);
+
+      if (!response.friction_active)
+        {
+          // L_f^f = +w psi Lambda, K_ff = I: drives Lambda to 0.
+          response.r_f = state.Lambda;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            response.drf_dLambda[k][k] = 1.;
+          return response;
+        }
+
+      // h = T Lambda + rho_t v (section 3.2). v is projected once more so
+      // that a slightly non-tangent input cannot leak into the normal
+      // direction; this is consistent with dv/dd = P since P P = P.
+      const Tensor<1, dim> v = P * state.slip;
+      Tensor<1, dim>       T_Lambda;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        T_Lambda += state.Lambda[k] * T[k];
+      const Tensor<1, dim> h      = T_Lambda + rho_t * v;
+      const double         norm_h = h.norm();
+
+      // s = -mu lambda_f of section 5, written as -mu lambda_f throughout.
+      const double mu_lf = mu * lambda_f;
+
+      if (norm_h <= 1.)
+        {
+          // Stick: P_B(h) = h.
+          response.status = PointStatus::stick;
+
+          // L_f^e = -w mu lambda_f N^e h.
+          response.force += -mu_lf * h;
+          response.dforce_dd += -mu_lf * rho_t * P;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            response.dforce_dLambda[k] = -mu_lf * T[k];
+          // K_ec threshold coupling: -mu P_B(h).
+          if (lambda_depends)
+            response.dforce_dlambda += -mu * h;
+
+          // L_f^f = -w psi mu lambda_f T^T v; K_ff = 0.
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              response.r_f[k] = -mu_lf * (T[k] * v);
+              // T^T P = T^T since T is tangent.
+              response.drf_dd[k] = -mu_lf * T[k];
+              // K_fc (stick) = -mu T^T v; vanishes at convergence (v = 0).
+              if (lambda_depends && parameters.threshold_coupling)
+                response.drf_dlambda[k] = -mu * (T[k] * v);
+            }
+        }
+      else
+        {
+          // Slip: P_B(h) = h / |h|, K_B = (I - q (x) q) / |h|, q = h / |h|.
+          response.status = PointStatus::slip;
+
+          const Tensor<1, dim> q = h / norm_h;
+          const Tensor<2, dim> K_B =
+            (identity_tensor<dim>() - outer_product(q, q)) / norm_h;
+          // K_B maps tangent vectors to tangent vectors, so K_B P = P K_B P.
+          const Tensor<2, dim> K_B_P = K_B * P;
+
+          // L_f^e = -w mu lambda_f N^e h / |h|.
+          response.force += -mu_lf * q;
+          response.dforce_dd += -mu_lf * rho_t * K_B_P;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            response.dforce_dLambda[k] = -mu_lf * (K_B * T[k]);
+          if (lambda_depends)
+            response.dforce_dlambda += -mu * q;
+
+          // L_f^f = +w psi (mu lambda_f / rho_t) T^T (T Lambda - h / |h|).
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              const double residual_k = state.Lambda[k] - T[k] * q;
+              response.r_f[k]         = mu_lf / rho_t * residual_k;
+              // K_fe = -mu lambda_f T^T K_B P (row k: (K_B P)^T tau_k).
+              response.drf_dd[k] = -mu_lf * (T[k] * K_B_P);
+              // K_ff = (mu lambda_f / rho_t) T^T (I - K_B) T.
+              for (unsigned int l = 0; l < dim - 1; ++l)
+                response.drf_dLambda[k][l] =
+                  mu_lf / rho_t * ((k == l ? 1. : 0.) - T[k] * (K_B * T[l]));
+              // K_fc (slip) = (mu / rho_t) T^T (T Lambda - h / |h|).
+              if (lambda_depends && parameters.threshold_coupling)
+                response.drf_dlambda[k] = mu / rho_t * residual_k;
+            }
+        }
+
+      return response;
+    }
+
+
+
+    // Explicit instantiations.
+    template std::array<Tensor<1, 2>, 1>
+    tangent_basis<2>(const Tensor<1, 2> &);
+    template std::array<Tensor<1, 3>, 2>
+    tangent_basis<3>(const Tensor<1, 3> &);
+
+    template PointResponse<2>
+    evaluate_contact_law<2>(const PointState<2> &, const LawParameters &);
+    template PointResponse<3>
+    evaluate_contact_law<3>(const PointState<3> &, const LawParameters &);
+
+  } // namespace Contact
+} // namespace Signorini

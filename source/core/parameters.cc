@@ -1,0 +1,915 @@
+#include <deal.II/base/utilities.h>
+
+#include <signorini/core/parameters.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace Signorini
+{
+  namespace
+  {
+    std::vector<double>
+    to_doubles(const std::string &text)
+    {
+      return Utilities::string_to_double(
+        Utilities::split_string_list(text, ','));
+    }
+
+    std::vector<unsigned int>
+    to_unsigned(const std::string &text)
+    {
+      std::vector<unsigned int> result;
+      for (const int v :
+           Utilities::string_to_int(Utilities::split_string_list(text, ',')))
+        result.push_back(static_cast<unsigned int>(v));
+      return result;
+    }
+
+    // Pattern for a comma separated list of doubles: empty or 1..3 numbers.
+    Patterns::List
+    point_pattern(const unsigned int min = 0)
+    {
+      return Patterns::List(Patterns::Double(), min, 3, ",");
+    }
+
+    unsigned int
+    component_index(const std::string &name)
+    {
+      if (name == "x")
+        return 0;
+      if (name == "y")
+        return 1;
+      return 2;
+    }
+  } // namespace
+
+
+  std::vector<std::string>
+  split_expressions(const std::string &text)
+  {
+    if (Utilities::trim(text).empty())
+      return {};
+    return Utilities::split_string_list(text, ';');
+  }
+
+
+  template <int dim>
+  Point<dim>
+  to_point(const std::vector<double> &values, const std::string &where)
+  {
+    if (values.size() != dim)
+      throw InputError(where + ": expected " + std::to_string(dim) +
+                       " coordinates (Dimension = " + std::to_string(dim) +
+                       ") but got " + std::to_string(values.size()) +
+                       ". Give one number per coordinate, separated by commas.");
+    Point<dim> p;
+    for (unsigned int d = 0; d < dim; ++d)
+      p[d] = values[d];
+    return p;
+  }
+  template Point<2> to_point<2>(const std::vector<double> &, const std::string &);
+  template Point<3> to_point<3>(const std::vector<double> &, const std::string &);
+
+
+  // ------------------------------------------------------------------ Body
+  void
+  BodyParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry(
+      "Shape",
+      "block",
+      Patterns::Selection("block|ball segment|cylinder segment|file"),
+      "How this body's mesh is made. block: rectangle (2D) or box (3D) between "
+      "'Lower corner' and 'Upper corner' with 'Subdivisions' cells per "
+      "direction; boundary faces numbered 0..3 (2D: x-, x+, y-, y+) or 0..5 "
+      "(3D: x-, x+, y-, y+, z-, z+). ball segment: disc (2D) or ball (3D) of "
+      "'Radius' around 'Centre', cut to the 'Segment' below the centre (its "
+      "flat face on top, curved face down); faces: 0 curved, 1 flat. cylinder "
+      "segment: the 2D disc segment extruded along z over 'Length' (3D; same "
+      "as ball segment in 2D); faces: 0 curved, 1 flat, 2 z-, 3 z+. file: "
+      "'Mesh file' read by deal.II's GridIn.");
+    prm.declare_entry("Lower corner",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Lower corner of a block [m]; the first Dimension "
+                      "numbers are used.");
+    prm.declare_entry("Upper corner",
+                      "1, 1, 1",
+                      point_pattern(),
+                      "Upper corner of a block [m]; the first Dimension "
+                      "numbers are used.");
+    prm.declare_entry("Subdivisions",
+                      "1, 1, 1",
+                      Patterns::List(Patterns::Integer(1, 10000), 1, 3, ","),
+                      "Number of cells of a block per coordinate direction "
+                      "[-]; the first Dimension numbers are used.");
+    prm.declare_entry("Centre",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Centre of a ball or cylinder segment [m] (for a "
+                      "cylinder the z coordinate is the start of its axis).");
+    prm.declare_entry("Radius",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Radius of a ball or cylinder segment [m].");
+    prm.declare_entry("Segment",
+                      "half",
+                      Patterns::Selection("full|half|quarter"),
+                      "Part of the disc/ball kept: full, the half below the "
+                      "centre, or the quarter below the centre with x >= "
+                      "centre (for symmetric models).");
+    prm.declare_entry("Length",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Axial length of a cylinder segment in 3D [m].");
+    prm.declare_entry("Mesh file",
+                      "",
+                      Patterns::FileName(),
+                      "Mesh file for Shape = file: Gmsh (.msh) or Abaqus "
+                      "(.inp). Relative paths are taken from the directory "
+                      "of the parameter file.");
+    prm.declare_entry(
+      "Boundary id map",
+      "",
+      Patterns::Map(Patterns::Integer(0, 255), Patterns::Integer(0, 255)),
+      "For Shape = file: physical group (Gmsh tag / Abaqus surface number) -> "
+      "boundary id, as 'tag: id, tag: id'. Tags not listed keep their number.");
+    prm.declare_entry(
+      "Boundary ids",
+      "",
+      Patterns::List(Patterns::Integer(0, 255), 0, 6, ","),
+      "Boundary ids given to the faces of a generated shape, in the order of "
+      "the shape's own face numbers (see Shape). Empty: 10*k + face number "
+      "for Body k, so that bodies never share a boundary id.");
+    prm.declare_entry("Material id",
+                      "-1",
+                      Patterns::Integer(-1, 255),
+                      "Material id of every cell of this body; -1: the body "
+                      "number k for generated shapes, the file's ids for "
+                      "meshes read from a file.");
+    prm.declare_entry("Shift",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Translation applied to this body after it is built "
+                      "[m]; the first Dimension numbers are used.");
+  }
+
+
+  void
+  BodyParameters::parse_parameters(ParameterHandler &prm)
+  {
+    const std::string s = prm.get("Shape");
+    shape               = s == "block"            ? BodyShape::block :
+                          s == "ball segment"     ? BodyShape::ball_segment :
+                          s == "cylinder segment" ? BodyShape::cylinder_segment :
+                                                    BodyShape::file;
+    lower_corner = to_doubles(prm.get("Lower corner"));
+    upper_corner = to_doubles(prm.get("Upper corner"));
+    subdivisions = to_unsigned(prm.get("Subdivisions"));
+    centre       = to_doubles(prm.get("Centre"));
+    radius       = prm.get_double("Radius");
+    const std::string seg = prm.get("Segment");
+    segment     = seg == "full" ? Segment::full :
+                  seg == "half" ? Segment::half :
+                                  Segment::quarter;
+    length      = prm.get_double("Length");
+    mesh_file   = prm.get("Mesh file");
+    boundary_id_map.clear();
+    for (const auto &entry :
+         Utilities::split_string_list(prm.get("Boundary id map"), ','))
+      {
+        const auto kv = Utilities::split_string_list(entry, ':');
+        boundary_id_map[Utilities::string_to_int(kv[0])] =
+          Utilities::string_to_int(kv[1]);
+      }
+    boundary_ids = to_unsigned(prm.get("Boundary ids"));
+    material_id  = prm.get_integer("Material id");
+    shift        = to_doubles(prm.get("Shift"));
+  }
+
+
+  void
+  GeometryParameters::declare_parameters(ParameterHandler &prm,
+                                         const Counts &    counts)
+  {
+    prm.enter_subsection("Geometry");
+    prm.declare_entry("Number of bodies",
+                      "1",
+                      Patterns::Integer(1, 16),
+                      "Number of bodies; each has a subsection 'Body k', k = "
+                      "1..N. Bodies never share vertices, even where they "
+                      "touch.");
+    prm.declare_entry("Global refinements",
+                      "0",
+                      Patterns::Integer(0, 12),
+                      "Number of uniform refinements of the assembled mesh "
+                      "[-].");
+    for (unsigned int b = 1; b <= counts.n_bodies; ++b)
+      {
+        prm.enter_subsection("Body " + std::to_string(b));
+        BodyParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  void
+  GeometryParameters::parse_parameters(ParameterHandler &prm,
+                                       const Counts &    counts)
+  {
+    prm.enter_subsection("Geometry");
+    global_refinements = prm.get_integer("Global refinements");
+    bodies.resize(counts.n_bodies);
+    for (unsigned int b = 0; b < counts.n_bodies; ++b)
+      {
+        prm.enter_subsection("Body " + std::to_string(b + 1));
+        bodies[b].parse_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  // ------------------------------------------------------------- Materials
+  void
+  MaterialParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Material id",
+                      "1",
+                      Patterns::Integer(0, 255),
+                      "Cells with this material id use this material.");
+    prm.declare_entry("Young's modulus",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Young's modulus E [Pa], > 0.");
+    prm.declare_entry("Poisson's ratio",
+                      "0.3",
+                      Patterns::Double(-0.999999, 0.499999),
+                      "Poisson's ratio nu [-], -1 < nu < 0.5 (plane strain "
+                      "in 2D).");
+  }
+
+
+  void
+  MaterialParameters::parse_parameters(ParameterHandler &prm)
+  {
+    material_id    = prm.get_integer("Material id");
+    youngs_modulus = prm.get_double("Young's modulus");
+    poissons_ratio = prm.get_double("Poisson's ratio");
+  }
+
+
+  // --------------------------------------------------- Boundary conditions
+  void
+  DirichletParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Boundary id",
+                      "0",
+                      Patterns::List(Patterns::Integer(0, 255), 1, 256, ","),
+                      "Boundary id(s) on which displacements are prescribed, "
+                      "e.g. '12' or '12, 22'.");
+    prm.declare_entry("Components",
+                      "x, y",
+                      Patterns::MultipleSelection("x|y|z"),
+                      "Displacement components prescribed, e.g. 'y' or "
+                      "'x, y'.");
+    prm.declare_entry(
+      "Values",
+      "0; 0",
+      Patterns::Anything(),
+      "Prescribed displacement [m], one expression per listed component, "
+      "separated by ';', as functions of x, y, z and the load time t "
+      "(deal.II FunctionParser syntax), e.g. '0; -0.1*t'.");
+    prm.declare_entry("At point",
+                      "",
+                      point_pattern(),
+                      "If not empty: only the mesh nodes of this boundary at "
+                      "this point [m] are constrained (e.g. one corner to "
+                      "remove a rigid-body mode).");
+  }
+
+
+  void
+  DirichletParameters::parse_parameters(ParameterHandler &prm)
+  {
+    boundary_ids = to_unsigned(prm.get("Boundary id"));
+    components.clear();
+    for (const auto &c :
+         Utilities::split_string_list(prm.get("Components"), ','))
+      components.push_back(component_index(c));
+    values   = split_expressions(prm.get("Values"));
+    at_point = to_doubles(prm.get("At point"));
+  }
+
+
+  void
+  NeumannParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Boundary id",
+                      "0",
+                      Patterns::List(Patterns::Integer(0, 255), 1, 256, ","),
+                      "Boundary id(s) loaded by this condition.");
+    prm.declare_entry("Type",
+                      "traction",
+                      Patterns::Selection("traction|pressure"),
+                      "traction: a surface force vector; pressure: a scalar "
+                      "acting against the outward normal (positive "
+                      "compresses).");
+    prm.declare_entry("Values",
+                      "0; 0",
+                      Patterns::Anything(),
+                      "Traction [Pa]: Dimension expressions separated by "
+                      "';'; pressure [Pa]: one expression; functions of x, "
+                      "y, z and the load time t.");
+  }
+
+
+  void
+  NeumannParameters::parse_parameters(ParameterHandler &prm)
+  {
+    boundary_ids = to_unsigned(prm.get("Boundary id"));
+    type   = prm.get("Type") == "traction" ? NeumannType::traction :
+                                             NeumannType::pressure;
+    values = split_expressions(prm.get("Values"));
+  }
+
+
+  void
+  BoundaryConditionParameters::declare_parameters(ParameterHandler &prm,
+                                                  const Counts &    counts)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry("Number of Dirichlet conditions",
+                      "1",
+                      Patterns::Integer(0, 64),
+                      "Number of subsections 'Dirichlet k', k = 1..N.");
+    prm.declare_entry("Number of Neumann conditions",
+                      "0",
+                      Patterns::Integer(0, 64),
+                      "Number of subsections 'Neumann k', k = 1..N.");
+    prm.declare_entry("Body force",
+                      "0; 0; 0",
+                      Patterns::Anything(),
+                      "Body force per unit volume [N/m^3]: Dimension "
+                      "expressions separated by ';' (extra ones ignored), "
+                      "functions of x, y, z and t.");
+    prm.declare_entry(
+      "Function constants",
+      "",
+      Patterns::Map(Patterns::Anything(), Patterns::Double(), 0, 1000, ","),
+      "Named constants usable in every expression, e.g. 'p0: 1e5, R: 0.1'.");
+    for (unsigned int k = 1; k <= counts.n_dirichlet; ++k)
+      {
+        prm.enter_subsection("Dirichlet " + std::to_string(k));
+        DirichletParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    for (unsigned int k = 1; k <= counts.n_neumann; ++k)
+      {
+        prm.enter_subsection("Neumann " + std::to_string(k));
+        NeumannParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  void
+  BoundaryConditionParameters::parse_parameters(ParameterHandler &prm,
+                                                const Counts &    counts)
+  {
+    prm.enter_subsection("Boundary conditions");
+    body_force = split_expressions(prm.get("Body force"));
+    constants.clear();
+    for (const auto &entry :
+         Utilities::split_string_list(prm.get("Function constants"), ','))
+      {
+        const auto kv = Utilities::split_string_list(entry, ':');
+        constants[kv[0]] = Utilities::string_to_double(kv[1]);
+      }
+    dirichlet.resize(counts.n_dirichlet);
+    for (unsigned int k = 0; k < counts.n_dirichlet; ++k)
+      {
+        prm.enter_subsection("Dirichlet " + std::to_string(k + 1));
+        dirichlet[k].parse_parameters(prm);
+        prm.leave_subsection();
+      }
+    neumann.resize(counts.n_neumann);
+    for (unsigned int k = 0; k < counts.n_neumann; ++k)
+      {
+        prm.enter_subsection("Neumann " + std::to_string(k + 1));
+        neumann[k].parse_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  // ---------------------------------------------------------- Load stepping
+  void
+  LoadSteppingParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Load stepping");
+    prm.declare_entry("Number of steps",
+                      "1",
+                      Patterns::Integer(1, 100000),
+                      "Number of equal load steps from t = 0 to 'Final "
+                      "time'.");
+    prm.declare_entry("Final time",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Load time at the end of the run [pseudo-time; loads "
+                      "are functions of t].");
+    prm.declare_entry("Step times",
+                      "",
+                      Patterns::List(Patterns::Double(0), 0, 100000, ","),
+                      "If not empty: the end times of the load steps, "
+                      "increasing and > 0 (overrides 'Number of steps' and "
+                      "'Final time').");
+    prm.declare_entry("Maximum step cuts",
+                      "5",
+                      Patterns::Integer(0, 30),
+                      "How often a load step that fails to converge is "
+                      "halved and retried before the run stops.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  LoadSteppingParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Load stepping");
+    step_times = to_doubles(prm.get("Step times"));
+    if (step_times.empty())
+      {
+        const unsigned int n = prm.get_integer("Number of steps");
+        const double       T = prm.get_double("Final time");
+        for (unsigned int k = 1; k <= n; ++k)
+          step_times.push_back(T * k / n);
+      }
+    for (unsigned int k = 0; k < step_times.size(); ++k)
+      if (step_times[k] <= (k == 0 ? 0. : step_times[k - 1]))
+        throw InputError(
+          "subsection 'Load stepping', parameter 'Step times': the times "
+          "must be > 0 and strictly increasing; entry " +
+          std::to_string(k + 1) + " is not.");
+    max_cuts = prm.get_integer("Maximum step cuts");
+    prm.leave_subsection();
+  }
+
+
+  // ----------------------------------------------------------------- Newton
+  void
+  NewtonParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Newton");
+    prm.declare_entry("Maximum iterations",
+                      "25",
+                      Patterns::Integer(1, 1000),
+                      "Newton iterations allowed per load step before the "
+                      "step is cut.");
+    prm.declare_entry("Relative tolerance",
+                      "1e-10",
+                      Patterns::Double(0, 1),
+                      "Converged when the residual norm is below this "
+                      "factor times the norm of the external force vector "
+                      "(or the first residual) [-].");
+    prm.declare_entry("Absolute tolerance",
+                      "1e-30",
+                      Patterns::Double(0),
+                      "Converged when the residual norm is below this value "
+                      "[N].");
+    prm.leave_subsection();
+  }
+
+
+  void
+  NewtonParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Newton");
+    max_iterations     = prm.get_integer("Maximum iterations");
+    relative_tolerance = prm.get_double("Relative tolerance");
+    absolute_tolerance = prm.get_double("Absolute tolerance");
+    prm.leave_subsection();
+  }
+
+
+  // ---------------------------------------------------------- Linear solver
+  void
+  LinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry("Type",
+                      "direct",
+                      Patterns::Selection("direct|CG|GMRES"),
+                      "direct: sparse LU (MUMPS by default); CG or GMRES: "
+                      "Krylov method preconditioned by Trilinos ML AMG with "
+                      "rigid-body modes.");
+    prm.declare_entry("Direct solver",
+                      "MUMPS",
+                      Patterns::Selection("MUMPS|KLU"),
+                      "Amesos package for Type = direct (Amesos_Mumps or "
+                      "Amesos_Klu).");
+    prm.declare_entry("Relative tolerance",
+                      "1e-12",
+                      Patterns::Double(0, 1),
+                      "Krylov stopping tolerance relative to the right hand "
+                      "side norm [-].");
+    prm.declare_entry("Maximum iterations",
+                      "2000",
+                      Patterns::Integer(1),
+                      "Krylov iteration cap.");
+    prm.declare_entry("Rigid body modes",
+                      "true",
+                      Patterns::Bool(),
+                      "Give AMG the rigid-body modes (translations and "
+                      "rotations) as near-null space; false: translations "
+                      "only.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  LinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    const std::string t = prm.get("Type");
+    type = t == "direct" ? LinearSolverType::direct :
+           t == "CG"     ? LinearSolverType::cg :
+                           LinearSolverType::gmres;
+    direct_package =
+      prm.get("Direct solver") == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu";
+    relative_tolerance = prm.get_double("Relative tolerance");
+    max_iterations     = prm.get_integer("Maximum iterations");
+    rigid_body_modes   = prm.get_bool("Rigid body modes");
+    prm.leave_subsection();
+  }
+
+
+  // ----------------------------------------------------------------- Output
+  void
+  OutputParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory",
+                      "results",
+                      Patterns::DirectoryName(),
+                      "Directory for VTU/PVTU, CSV and the echoed parameter "
+                      "file; created if missing.");
+    prm.declare_entry("Write VTU",
+                      "true",
+                      Patterns::Bool(),
+                      "Write a VTU/PVTU solution file per load step.");
+    prm.declare_entry("Write CSV",
+                      "true",
+                      Patterns::Bool(),
+                      "Write the per-step statistics table as CSV.");
+    prm.declare_entry("Timing summary",
+                      "true",
+                      Patterns::Bool(),
+                      "Print the wall-time table at the end of the run.");
+    prm.declare_entry("Verbosity",
+                      "normal",
+                      Patterns::Selection("quiet|normal|verbose"),
+                      "quiet: summary only; normal: one block per load step; "
+                      "verbose: every Newton iteration with its residuals.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    directory      = prm.get("Directory");
+    write_vtu      = prm.get_bool("Write VTU");
+    write_csv      = prm.get_bool("Write CSV");
+    timing_summary = prm.get_bool("Timing summary");
+    const std::string v = prm.get("Verbosity");
+    verbosity = v == "quiet"  ? Verbosity::quiet :
+                v == "normal" ? Verbosity::normal :
+                                Verbosity::verbose;
+    prm.leave_subsection();
+  }
+
+
+  // ------------------------------------------------------ Reference solution
+  void
+  ReferenceParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Reference solution");
+    prm.declare_entry("Displacement",
+                      "",
+                      Patterns::Anything(),
+                      "Exact displacement [m] for verification: Dimension "
+                      "expressions separated by ';' in x, y, z, t. Empty: "
+                      "none. The run prints the relative L2 error.");
+    prm.declare_entry("Stress",
+                      "",
+                      Patterns::Anything(),
+                      "Exact Cauchy stress [Pa]: Dimension^2 expressions, "
+                      "row by row, separated by ';'. Empty: none. The run "
+                      "prints the largest relative error at quadrature "
+                      "points.");
+    prm.declare_entry("Tolerance",
+                      "1e-10",
+                      Patterns::Double(0),
+                      "Relative error below which the comparison is "
+                      "reported as PASS.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  ReferenceParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Reference solution");
+    displacement = split_expressions(prm.get("Displacement"));
+    stress       = split_expressions(prm.get("Stress"));
+    tolerance    = prm.get_double("Tolerance");
+    prm.leave_subsection();
+  }
+
+
+  // ------------------------------------------------------------- Everything
+  void
+  Parameters::declare_parameters(ParameterHandler &prm, const Counts &counts)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Space dimension: 2 (plane strain) or 3.");
+    prm.enter_subsection("Finite element");
+    prm.declare_entry("Degree",
+                      "1",
+                      Patterns::Integer(1, 3),
+                      "Polynomial degree of the displacement (1: Q1, 2: Q2).");
+    prm.leave_subsection();
+    GeometryParameters::declare_parameters(prm, counts);
+    prm.enter_subsection("Materials");
+    prm.declare_entry("Number of materials",
+                      "1",
+                      Patterns::Integer(1, 64),
+                      "Number of subsections 'Material k', k = 1..N.");
+    for (unsigned int k = 1; k <= counts.n_materials; ++k)
+      {
+        prm.enter_subsection("Material " + std::to_string(k));
+        MaterialParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+    BoundaryConditionParameters::declare_parameters(prm, counts);
+    LoadSteppingParameters::declare_parameters(prm);
+    NewtonParameters::declare_parameters(prm);
+    LinearSolverParameters::declare_parameters(prm);
+    OutputParameters::declare_parameters(prm);
+    ReferenceParameters::declare_parameters(prm);
+  }
+
+
+  void
+  Parameters::parse_parameters(ParameterHandler &prm, const Counts &counts)
+  {
+    dimension = prm.get_integer("Dimension");
+    prm.enter_subsection("Finite element");
+    fe_degree = prm.get_integer("Degree");
+    prm.leave_subsection();
+    geometry.parse_parameters(prm, counts);
+    prm.enter_subsection("Materials");
+    materials.resize(counts.n_materials);
+    for (unsigned int k = 0; k < counts.n_materials; ++k)
+      {
+        prm.enter_subsection("Material " + std::to_string(k + 1));
+        materials[k].parse_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+    boundary_conditions.parse_parameters(prm, counts);
+    load_stepping.parse_parameters(prm);
+    newton.parse_parameters(prm);
+    linear_solver.parse_parameters(prm);
+    output.parse_parameters(prm);
+    reference.parse_parameters(prm);
+    check_consistency();
+  }
+
+
+  void
+  Parameters::check_consistency() const
+  {
+    const unsigned int dim = dimension;
+    for (unsigned int k = 0; k < boundary_conditions.dirichlet.size(); ++k)
+      {
+        const auto &      d = boundary_conditions.dirichlet[k];
+        const std::string where =
+          "subsection 'Boundary conditions/Dirichlet " + std::to_string(k + 1) +
+          "'";
+        for (const unsigned int c : d.components)
+          if (c >= dim)
+            throw InputError(where +
+                             ", parameter 'Components': component z does not "
+                             "exist for Dimension = 2. Use x and/or y.");
+        if (d.values.size() != d.components.size())
+          throw InputError(where + ", parameter 'Values': " +
+                           std::to_string(d.values.size()) +
+                           " expression(s) for " +
+                           std::to_string(d.components.size()) +
+                           " component(s). Give one expression per listed "
+                           "component, separated by ';'.");
+        if (!d.at_point.empty() && d.at_point.size() != dim)
+          throw InputError(where + ", parameter 'At point': give " +
+                           std::to_string(dim) + " coordinates.");
+      }
+    for (unsigned int k = 0; k < boundary_conditions.neumann.size(); ++k)
+      {
+        const auto &       n = boundary_conditions.neumann[k];
+        const unsigned int expected =
+          n.type == NeumannType::traction ? dim : 1;
+        if (n.values.size() != expected)
+          throw InputError("subsection 'Boundary conditions/Neumann " +
+                           std::to_string(k + 1) + "', parameter 'Values': " +
+                           std::to_string(n.values.size()) +
+                           " expression(s) given, " + std::to_string(expected) +
+                           " expected for this Type and Dimension.");
+      }
+    if (boundary_conditions.body_force.size() < dim)
+      throw InputError("subsection 'Boundary conditions', parameter 'Body "
+                       "force': give at least Dimension expressions separated "
+                       "by ';'.");
+    if (!reference.displacement.empty() && reference.displacement.size() != dim)
+      throw InputError("subsection 'Reference solution', parameter "
+                       "'Displacement': give Dimension expressions.");
+    if (!reference.stress.empty() && reference.stress.size() != dim * dim)
+      throw InputError("subsection 'Reference solution', parameter 'Stress': "
+                       "give Dimension^2 expressions (row by row).");
+    std::map<unsigned int, unsigned int> seen;
+    for (unsigned int k = 0; k < materials.size(); ++k)
+      if (!seen.emplace(materials[k].material_id, k).second)
+        throw InputError("subsection 'Materials/Material " +
+                         std::to_string(k + 1) +
+                         "', parameter 'Material id': id " +
+                         std::to_string(materials[k].material_id) +
+                         " is already used by Material " +
+                         std::to_string(seen[materials[k].material_id] + 1) +
+                         ".");
+    for (unsigned int b = 0; b < geometry.bodies.size(); ++b)
+      if (geometry.bodies[b].shape == BodyShape::file &&
+          geometry.bodies[b].mesh_file.empty())
+        throw InputError("subsection 'Geometry/Body " + std::to_string(b + 1) +
+                         "', parameter 'Mesh file': Shape = file needs a mesh "
+                         "file name.");
+  }
+
+
+  // ------------------------------------------------------------ File reading
+  namespace
+  {
+    // The subsection path that is open at line @p line_no of @p text.
+    std::string
+    subsection_at_line(const std::string &text, const unsigned int line_no)
+    {
+      std::istringstream       in(text);
+      std::vector<std::string> stack;
+      std::string              line;
+      for (unsigned int n = 1; n < line_no && std::getline(in, line); ++n)
+        {
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (line.rfind("subsection ", 0) == 0)
+            stack.push_back(Utilities::trim(line.substr(11)));
+          else if (line == "end" && !stack.empty())
+            stack.pop_back();
+        }
+      std::string path;
+      for (const auto &s : stack)
+        path += (path.empty() ? "" : "/") + s;
+      return path.empty() ? "top level" : "subsection '" + path + "'";
+    }
+
+    // Turn deal.II's parse exception into one message naming line and
+    // subsection, with a hint for the cases users hit most.
+    std::string
+    explain_parse_error(const ExceptionBase &e,
+                        const std::string &  text,
+                        const std::string &  source)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      std::string message = info.str();
+      // print_info() indents and wraps; put it on one line.
+      message = std::regex_replace(message, std::regex("\\s+"), " ");
+      message = Utilities::trim(message);
+
+      std::smatch m;
+      std::string where = source;
+      if (std::regex_search(message, m, std::regex("Line <(\\d+)>")))
+        {
+          const unsigned int line_no = std::stoi(m[1]);
+          where += ", line " + std::string(m[1]) + " (" +
+                   subsection_at_line(text, line_no) + ")";
+        }
+      message = std::regex_replace(message,
+                                   std::regex("Line <\\d+> of file <[^>]*>: "),
+                                   "");
+      std::string hint;
+      if (message.find("No entry with name") != std::string::npos ||
+          message.find("has not been declared") != std::string::npos ||
+          message.find("No such subsection") != std::string::npos ||
+          message.find("not been declared") != std::string::npos)
+        hint = " Check the spelling against 'signorini --print-parameters'; "
+               "numbered subsections (Body k, Material k, Dirichlet k, "
+               "Neumann k) must not exceed their 'Number of ...' entry.";
+      else if (message.find("does not match the given pattern") !=
+               std::string::npos)
+        hint = message.find("named Dimension") != std::string::npos ?
+                 " Set Dimension = 2 (plane strain) or 3." :
+                 " Change the value to one the pattern allows.";
+      return "Error in " + where + ": " + message + hint;
+    }
+
+    Parameters
+    parse_text(const std::string &text,
+               const std::string &source,
+               ParameterHandler & prm)
+    {
+      // Pre-pass: only the counts, ignoring everything else.
+      Counts counts;
+      {
+        ParameterHandler pre;
+        pre.declare_entry("Dimension", "2", Patterns::Anything());
+        pre.enter_subsection("Geometry");
+        pre.declare_entry("Number of bodies", "1", Patterns::Integer(1, 16));
+        pre.leave_subsection();
+        pre.enter_subsection("Materials");
+        pre.declare_entry("Number of materials", "1", Patterns::Integer(1, 64));
+        pre.leave_subsection();
+        pre.enter_subsection("Boundary conditions");
+        pre.declare_entry("Number of Dirichlet conditions",
+                          "1",
+                          Patterns::Integer(0, 64));
+        pre.declare_entry("Number of Neumann conditions",
+                          "0",
+                          Patterns::Integer(0, 64));
+        pre.leave_subsection();
+        try
+          {
+            pre.parse_input_from_string(text, "", true);
+          }
+        catch (const ExceptionBase &e)
+          {
+            throw InputError(explain_parse_error(e, text, source));
+          }
+        pre.enter_subsection("Geometry");
+        counts.n_bodies = pre.get_integer("Number of bodies");
+        pre.leave_subsection();
+        pre.enter_subsection("Materials");
+        counts.n_materials = pre.get_integer("Number of materials");
+        pre.leave_subsection();
+        pre.enter_subsection("Boundary conditions");
+        counts.n_dirichlet = pre.get_integer("Number of Dirichlet conditions");
+        counts.n_neumann   = pre.get_integer("Number of Neumann conditions");
+        pre.leave_subsection();
+      }
+
+      Parameters::declare_parameters(prm, counts);
+      try
+        {
+          prm.parse_input_from_string(text, "", false);
+        }
+      catch (const ExceptionBase &e)
+        {
+          throw InputError(explain_parse_error(e, text, source));
+        }
+      Parameters parameters;
+      parameters.parse_parameters(prm, counts);
+      return parameters;
+    }
+  } // namespace
+
+
+  Parameters
+  read_parameters(const std::string &filename, ParameterHandler &prm)
+  {
+    std::ifstream in(filename);
+    if (!in)
+      throw InputError("Cannot open the parameter file '" + filename +
+                       "'. Give the path of an existing .prm file.");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    Parameters parameters =
+      parse_text(buffer.str(), "parameter file '" + filename + "'", prm);
+    const auto slash = filename.find_last_of('/');
+    parameters.input_directory =
+      slash == std::string::npos ? "." : filename.substr(0, slash);
+    return parameters;
+  }
+
+
+  Parameters
+  read_parameters_from_string(const std::string &text, ParameterHandler &prm)
+  {
+    return parse_text(text, "parameter text", prm);
+  }
+} // namespace Signorini

@@ -1,0 +1,335 @@
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria.h>
+
+#include <signorini/geometry/scene.h>
+
+#include <fstream>
+#include <memory>
+
+namespace Signorini
+{
+  namespace Geometry
+  {
+    namespace
+    {
+      std::string
+      body_name(const unsigned int b)
+      {
+        return "subsection 'Geometry/Body " + std::to_string(b + 1) + "'";
+      }
+
+      template <int dim>
+      Point<dim>
+      point_of(const std::vector<double> &v,
+               const unsigned int         b,
+               const std::string &        entry)
+      {
+        // Entries default to 3 numbers; use the first dim of them.
+        if (v.size() < dim)
+          throw InputError(body_name(b) + ", parameter '" + entry +
+                           "': give " + std::to_string(dim) + " coordinates.");
+        Point<dim> p;
+        for (unsigned int d = 0; d < dim; ++d)
+          p[d] = v[d];
+        return p;
+      }
+
+      // Gives the faces of a generated shape their user-visible ids.
+      template <int dim>
+      void
+      assign_boundary_ids(Triangulation<dim> &  tria,
+                          const BodyParameters &body,
+                          const unsigned int    b,
+                          const unsigned int    n_faces)
+      {
+        if (!body.boundary_ids.empty() && body.boundary_ids.size() < n_faces)
+          throw InputError(body_name(b) + ", parameter 'Boundary ids': this "
+                           "shape has " +
+                           std::to_string(n_faces) + " face groups, give " +
+                           std::to_string(n_faces) +
+                           " ids (or leave it empty).");
+        for (const auto &face : tria.active_face_iterators())
+          if (face->at_boundary())
+            {
+              const unsigned int local = face->boundary_id();
+              face->set_boundary_id(body.boundary_ids.empty() ?
+                                      10 * (b + 1) + local :
+                                      body.boundary_ids[local]);
+            }
+      }
+
+      // Disc (2D) or ball (3D) segment with the curved side below the
+      // centre. deal.II makes half balls cut at x = 0 (kept x > 0) and
+      // quarter balls in the positive orthant; a rotation by -90 degrees
+      // about z turns +x into -y.
+      template <int dim>
+      void
+      make_ball_segment(Triangulation<dim> &tria,
+                        const Segment       segment,
+                        const double        radius)
+      {
+        if (segment == Segment::full)
+          GridGenerator::hyper_ball(tria, Point<dim>(), radius);
+        else if (segment == Segment::half)
+          GridGenerator::half_hyper_ball(tria, Point<dim>(), radius);
+        else
+          GridGenerator::quarter_hyper_ball(tria, Point<dim>(), radius);
+        // 0 = curved, 1 = flat; hyper_ball may colour nothing else.
+        for (const auto &face : tria.active_face_iterators())
+          if (face->at_boundary() && face->boundary_id() != 0)
+            face->set_boundary_id(1);
+        if constexpr (dim == 2)
+          GridTools::rotate(-numbers::PI / 2, tria);
+        else
+          GridTools::rotate(Tensor<1, 3>({0., 0., 1.}), -numbers::PI / 2, tria);
+      }
+
+      struct CurvedBody
+      {
+        types::manifold_id surface_id, volume_id;
+      };
+
+      template <int dim>
+      void
+      build_body(const BodyParameters &body,
+                 const unsigned int    b,
+                 const std::string &   input_directory,
+                 Triangulation<dim> &  tria)
+      {
+        const Point<dim> shift = point_of<dim>(body.shift, b, "Shift");
+        switch (body.shape)
+          {
+            case BodyShape::block:
+              {
+                if (body.subdivisions.size() < dim)
+                  throw InputError(body_name(b) +
+                                   ", parameter 'Subdivisions': give " +
+                                   std::to_string(dim) + " numbers.");
+                const Point<dim> p1 =
+                  point_of<dim>(body.lower_corner, b, "Lower corner");
+                const Point<dim> p2 =
+                  point_of<dim>(body.upper_corner, b, "Upper corner");
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (!(p2[d] > p1[d]))
+                    throw InputError(body_name(b) +
+                                     ": 'Upper corner' must exceed 'Lower "
+                                     "corner' in every coordinate.");
+                std::vector<unsigned int> reps(body.subdivisions.begin(),
+                                               body.subdivisions.begin() + dim);
+                GridGenerator::subdivided_hyper_rectangle(
+                  tria, reps, p1 + shift, p2 + shift, true);
+                assign_boundary_ids(tria, body, b, 2 * dim);
+                break;
+              }
+            case BodyShape::ball_segment:
+            case BodyShape::cylinder_segment:
+              {
+                const Point<dim> centre =
+                  point_of<dim>(body.centre, b, "Centre") + shift;
+                if (dim == 2 || body.shape == BodyShape::ball_segment)
+                  {
+                    make_ball_segment(tria, body.segment, body.radius);
+                    GridTools::shift(centre, tria);
+                    assign_boundary_ids(tria, body, b, 2);
+                  }
+                else
+                  {
+                    Triangulation<2> disc;
+                    make_ball_segment(disc, body.segment, body.radius);
+                    // Side walls keep 0/1; put the end caps on 2 and 3.
+                    const unsigned int n_layers =
+                      body.subdivisions.empty() ? 1 : body.subdivisions[0];
+                    Triangulation<3> cylinder;
+                    GridGenerator::extrude_triangulation(disc,
+                                                         n_layers + 1,
+                                                         body.length,
+                                                         cylinder);
+                    for (const auto &face : cylinder.active_face_iterators())
+                      if (face->at_boundary())
+                        {
+                          const double z = face->center()[2];
+                          if (std::abs(z) < 1e-12 * body.length)
+                            face->set_boundary_id(2);
+                          else if (std::abs(z - body.length) <
+                                   1e-12 * body.length)
+                            face->set_boundary_id(3);
+                        }
+                    if constexpr (dim == 3)
+                      {
+                        tria.copy_triangulation(cylinder);
+                        GridTools::shift(centre, tria);
+                      }
+                    assign_boundary_ids(tria, body, b, 4);
+                  }
+                break;
+              }
+            case BodyShape::file:
+              {
+                std::string name = body.mesh_file;
+                if (name[0] != '/')
+                  name = input_directory + "/" + name;
+                std::ifstream in(name);
+                if (!in)
+                  throw InputError(body_name(b) +
+                                   ", parameter 'Mesh file': cannot open '" +
+                                   name +
+                                   "'. Give an existing .msh or .inp file "
+                                   "(relative paths start at the parameter "
+                                   "file's directory).");
+                GridIn<dim> grid_in;
+                grid_in.attach_triangulation(tria);
+                const std::string ext = name.substr(name.find_last_of('.') + 1);
+                try
+                  {
+                    if (ext == "msh")
+                      grid_in.read_msh(in);
+                    else if (ext == "inp")
+                      grid_in.read_abaqus(in);
+                    else
+                      throw InputError(body_name(b) +
+                                       ", parameter 'Mesh file': unknown "
+                                       "extension '." +
+                                       ext + "'; use .msh or .inp.");
+                  }
+                catch (const ExceptionBase &e)
+                  {
+                    std::ostringstream info;
+                    e.print_info(info);
+                    throw InputError(body_name(b) +
+                                     ", parameter 'Mesh file': GridIn could "
+                                     "not read '" +
+                                     name + "': " + info.str());
+                  }
+                for (const auto &face : tria.active_face_iterators())
+                  if (face->at_boundary())
+                    {
+                      const auto it =
+                        body.boundary_id_map.find(face->boundary_id());
+                      if (it != body.boundary_id_map.end())
+                        face->set_boundary_id(it->second);
+                    }
+                GridTools::shift(shift, tria);
+                break;
+              }
+          }
+        if (body.material_id >= 0 || body.shape != BodyShape::file)
+          for (const auto &cell : tria.active_cell_iterators())
+            cell->set_material_id(body.material_id >= 0 ? body.material_id :
+                                                          b + 1);
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    create_mesh(const Parameters &                         parameters,
+                parallel::distributed::Triangulation<dim> &triangulation)
+    {
+      std::vector<Point<dim>>    vertices;
+      std::vector<CellData<dim>> cells;
+      SubCellData                subcells;
+      // Manifold objects to attach: id -> (surface manifold, curved body?)
+      std::map<types::manifold_id, std::unique_ptr<Manifold<dim>>> manifolds;
+      std::vector<types::manifold_id> volume_manifolds;
+
+      const auto &bodies = parameters.geometry.bodies;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          Triangulation<dim> body_tria;
+          build_body(bodies[b], b, parameters.input_directory, body_tria);
+
+          // Curved shapes: surface manifold on the curved faces, transfinite
+          // interpolation in the volume (initialised on the joined mesh).
+          if (bodies[b].shape == BodyShape::ball_segment ||
+              bodies[b].shape == BodyShape::cylinder_segment)
+            {
+              const types::manifold_id surface = 2 * b + 1, volume = 2 * b + 2;
+              body_tria.set_all_manifold_ids(volume);
+              const types::boundary_id curved =
+                bodies[b].boundary_ids.empty() ? 10 * (b + 1) :
+                                                 bodies[b].boundary_ids[0];
+              body_tria.set_all_manifold_ids_on_boundary(curved, surface);
+              const Point<dim> centre =
+                point_of<dim>(bodies[b].centre, b, "Centre") +
+                point_of<dim>(bodies[b].shift, b, "Shift");
+              if (dim == 3 && bodies[b].shape == BodyShape::cylinder_segment)
+                {
+                  Tensor<1, dim> axis;
+                  axis[dim - 1] = 1.;
+                  manifolds[surface] =
+                    std::make_unique<CylindricalManifold<dim>>(axis, centre);
+                }
+              else
+                manifolds[surface] =
+                  std::make_unique<SphericalManifold<dim>>(centre);
+              volume_manifolds.push_back(volume);
+            }
+          else
+            body_tria.set_all_manifold_ids(numbers::flat_manifold_id);
+
+          auto description = GridTools::get_coarse_mesh_description(body_tria);
+          const unsigned int offset = vertices.size();
+          for (const auto &v : std::get<0>(description))
+            vertices.push_back(v);
+          for (auto c : std::get<1>(description))
+            {
+              for (auto &v : c.vertices)
+                v += offset;
+              cells.push_back(c);
+            }
+          auto &sub = std::get<2>(description);
+          for (auto l : sub.boundary_lines)
+            {
+              for (auto &v : l.vertices)
+                v += offset;
+              subcells.boundary_lines.push_back(l);
+            }
+          for (auto q : sub.boundary_quads)
+            {
+              for (auto &v : q.vertices)
+                v += offset;
+              subcells.boundary_quads.push_back(q);
+            }
+        }
+
+      triangulation.create_triangulation(vertices, cells, subcells);
+      for (auto &[id, manifold] : manifolds)
+        triangulation.set_manifold(id, *manifold);
+      for (const auto id : volume_manifolds)
+        {
+          TransfiniteInterpolationManifold<dim> transfinite;
+          transfinite.initialize(triangulation);
+          triangulation.set_manifold(id, transfinite);
+        }
+      triangulation.refine_global(parameters.geometry.global_refinements);
+    }
+
+
+    template <int dim>
+    std::set<types::boundary_id>
+    boundary_ids(const Triangulation<dim> &triangulation)
+    {
+      // The coarse mesh is known on every rank of a distributed mesh.
+      std::set<types::boundary_id> ids;
+      for (const auto &cell : triangulation.cell_iterators_on_level(0))
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            ids.insert(face->boundary_id());
+      return ids;
+    }
+
+    template void
+    create_mesh<2>(const Parameters &,
+                   parallel::distributed::Triangulation<2> &);
+    template void
+    create_mesh<3>(const Parameters &,
+                   parallel::distributed::Triangulation<3> &);
+    template std::set<types::boundary_id>
+    boundary_ids<2>(const Triangulation<2> &);
+    template std::set<types::boundary_id>
+    boundary_ids<3>(const Triangulation<3> &);
+  } // namespace Geometry
+} // namespace Signorini

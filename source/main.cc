@@ -1,0 +1,82 @@
+// signorini: the command-line driver. All physics lives in the library; this
+// file only parses the command line, dispatches and turns errors into one
+// clear message (printed once, on rank 0) and a non-zero exit code.
+#include <deal.II/base/mpi.h>
+
+#include <signorini/core/parameters.h>
+#include <signorini/core/simulation.h>
+
+#include <iostream>
+
+namespace
+{
+  void
+  print_usage(std::ostream &out)
+  {
+    out << "Usage: signorini [options] <file.prm>\n"
+           "Quasi-static elasticity and frictional contact with deal.II.\n\n"
+           "Options:\n"
+           "  -h, --help            print this message\n"
+           "  --print-parameters    print every parameter with its default "
+           "value\n"
+           "                        and documentation (prm format)\n\n"
+           "Run in parallel with: mpirun -np N signorini file.prm\n";
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  using namespace dealii;
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "-h" || args[0] == "--help")
+    {
+      if (root)
+        print_usage(args.empty() ? std::cerr : std::cout);
+      return args.empty() ? 1 : 0;
+    }
+  if (args[0] == "--print-parameters")
+    {
+      ParameterHandler   prm;
+      Signorini::Counts  counts;
+      counts.n_neumann = 1; // show one of each numbered subsection
+      Signorini::Parameters::declare_parameters(prm, counts);
+      if (root)
+        prm.print_parameters(std::cout, ParameterHandler::PRM);
+      return 0;
+    }
+  if (args.size() != 1 || args[0][0] == '-')
+    {
+      if (root)
+        print_usage(std::cerr);
+      return 1;
+    }
+
+  try
+    {
+      Signorini::run_from_file(args[0], MPI_COMM_WORLD);
+    }
+  catch (const Signorini::InputError &e)
+    {
+      if (root)
+        std::cerr << "\nsignorini: input error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const Signorini::RunError &e)
+    {
+      if (root)
+        std::cerr << "\nsignorini: run stopped: " << e.what() << std::endl;
+      return 2;
+    }
+  catch (const std::exception &e)
+    {
+      std::cerr << "\nsignorini: unexpected error on rank "
+                << Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) << ":\n"
+                << e.what() << std::endl;
+      MPI_Abort(MPI_COMM_WORLD, 3);
+    }
+  return 0;
+}
