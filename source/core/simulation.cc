@@ -770,10 +770,25 @@ namespace Signorini
   {
     ParameterHandler prm;
     const Parameters parameters = read_parameters(filename, prm);
+    // Errors leave the Simulation's scope only after it is destroyed, so
+    // its TimerOutput does not complain about an exception in flight.
+    std::exception_ptr failure;
+    const auto         run = [&](auto &&simulation) {
+      try
+        {
+          simulation.run();
+        }
+      catch (...)
+        {
+          failure = std::current_exception();
+        }
+    };
     if (parameters.dimension == 2)
-      Simulation<2>(parameters, prm, mpi_communicator).run();
+      run(Simulation<2>(parameters, prm, mpi_communicator));
     else
-      Simulation<3>(parameters, prm, mpi_communicator).run();
+      run(Simulation<3>(parameters, prm, mpi_communicator));
+    if (failure)
+      std::rethrow_exception(failure);
   }
 
   template class Simulation<2>;
