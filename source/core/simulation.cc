@@ -451,8 +451,9 @@ namespace Signorini
     for (iterations = 0; iterations <= parameters.newton.max_iterations;
          ++iterations)
       {
-        const bool need_matrix = true;
-        assemble(need_matrix);
+        // Residual first; the matrix only if a solve follows, so the
+        // converged check does not pay for a matrix assembly.
+        assemble(false);
         const double residual = newton_rhs.l2_norm();
         if (iterations == 0)
           {
@@ -477,6 +478,7 @@ namespace Signorini
         if (iterations == parameters.newton.max_iterations)
           break;
 
+        assemble(true);
         TimerOutput::Scope t(timer, "linear solve");
         TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
         linear_solver->solve(system_matrix, update, newton_rhs);
