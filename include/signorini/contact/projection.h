@@ -1,0 +1,269 @@
+#ifndef signorini_contact_projection_h
+#define signorini_contact_projection_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <vector>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using namespace dealii;
+
+    /**
+     * Result of the closest-point projection of a point p onto one master
+     * face (pairing step of formulation.md section 2). Lengths in [m].
+     */
+    template <int dim>
+    struct FaceProjection
+    {
+      /**
+       * Reference coordinates xi^m of the projection on [0,1]^(dim-1) [-].
+       * Not clamped: it may lie outside the reference face, see `inside`.
+       */
+      Point<dim - 1> xi;
+
+      /**
+       * Projected point x^m = x(xi) in the current configuration [m].
+       */
+      Point<dim> x_m;
+
+      /**
+       * Unit normal n at xi, pointing into the master body (oriented with the
+       * caller's inside point: n . (inside_point - x_m) > 0).
+       */
+      Tensor<1, dim> normal;
+
+      /**
+       * Covariant tangent vectors a_k = dx/dxi_k at xi [m] (not normalised,
+       * not orthogonal in general). The orthonormal basis T of section 2 is
+       * rebuilt from `normal` by the caller.
+       */
+      std::array<Tensor<1, dim>, dim - 1> tangents;
+
+      /**
+       * Signed distance g = (p - x^m) . n [m] (section 2, without g_0):
+       * g > 0 means p lies on the master side (interpenetration).
+       */
+      double gap = 0.;
+
+      /**
+       * true iff the Newton iteration met its step tolerance.
+       */
+      bool converged = false;
+
+      /**
+       * true iff xi lies in [0,1]^(dim-1) up to tol_xi.
+       */
+      bool inside = false;
+
+      /**
+       * max_k max(-xi_k, xi_k - 1, 0) [-]: how far xi lies outside the
+       * reference face. Among candidate faces where no projection is
+       * `inside`, the one with the smallest violation is the natural choice.
+       */
+      double violation = 0.;
+
+      /**
+       * Number of Newton iterations used.
+       */
+      unsigned int n_iterations = 0;
+    };
+
+
+    /**
+     * Closest-point projection of p onto ONE master face, given by the
+     * current positions of its Lagrange support points (formulation.md
+     * section 2, "Pairing"). The face map is
+     *   x(xi) = sum_k N_k(xi) X_k,  xi in [0,1]^(dim-1),
+     * with N_k the shape functions of FE_Q<dim-1>(degree), so `face_points`
+     * must be in deal.II's FE_Q<dim-1> numbering (vertices, then line
+     * midpoints, then the centre), i.e. the order of
+     * FE_Q<dim-1>(degree).get_unit_support_points():
+     *   2D, Q1: x0, x1;          Q2: x0, x1, x_mid;
+     *   3D, Q1: the 4 vertices (0,0),(1,0),(0,1),(1,1);
+     *       Q2: the 4 vertices, the midpoints of lines x=0, x=1, y=0, y=1,
+     *           the centre.
+     * The degree (1 or 2) is deduced from face_points.size() (2/3 in 2D,
+     * 4/9 in 3D). This is the order of fe.face_to_cell_index(i, face, ...)
+     * for an FE_Q<dim> cell; any parametrisation of the face is acceptable
+     * since the normal is oriented with inside_point.
+     *
+     * Damped Newton on f(xi) = |x(xi) - p|^2 / 2 with the full Hessian
+     * a_k . a_l + (x - p) . x_{,kl}, falling back to Gauss-Newton
+     * a_k . a_l where that is not positive definite; started at the face
+     * centre; backtracking on f. Unconstrained: xi may leave [0,1]^(dim-1).
+     *
+     * @param p            point to project (e.g. a slave contact point) [m]
+     * @param face_points  current positions of the face support points [m]
+     * @param inside_point any point strictly inside the master cell (e.g. its
+     *                     centre) [m]; fixes the orientation of the normal
+     * @param tol_xi       tolerance on [0,1]^(dim-1) for `inside` [-]
+     * @param max_iterations Newton iteration limit
+     */
+    template <int dim>
+    FaceProjection<dim>
+    project_onto_face(const Point<dim>              &p,
+                      const std::vector<Point<dim>> &face_points,
+                      const Point<dim>              &inside_point,
+                      const double                   tol_xi         = 1e-8,
+                      const unsigned int             max_iterations = 30);
+
+
+    /**
+     * Closest point, normal and gap of a point with respect to an analytic
+     * rigid master surface (formulation.md section 2).
+     */
+    template <int dim>
+    struct RigidProjection
+    {
+      /**
+       * Closest point x^m on the obstacle surface [m].
+       */
+      Point<dim> x_m;
+
+      /**
+       * Unit normal at x^m pointing into the obstacle (the master body).
+       */
+      Tensor<1, dim> normal;
+
+      /**
+       * g = (p - x^m) . n [m]; g > 0 iff p penetrates the obstacle.
+       */
+      double gap;
+    };
+
+
+    /**
+     * Common interface of the analytic rigid obstacles. Their geometry is
+     * given in a reference position and rigidly translated by a vector the
+     * caller updates with the load time (section 2: prescribed motion).
+     */
+    template <int dim>
+    class RigidObstacle
+    {
+    public:
+      virtual ~RigidObstacle() = default;
+
+      /**
+       * Set the current rigid translation [m] of the obstacle with respect
+       * to the position given at construction.
+       */
+      void
+      set_translation(const Tensor<1, dim> &translation);
+
+      const Tensor<1, dim> &
+      get_translation() const;
+
+      /**
+       * Closest point, inward normal and gap of p [m] (current translation).
+       */
+      RigidProjection<dim>
+      project(const Point<dim> &p) const;
+
+    protected:
+      /**
+       * Projection in the reference position (translation zero).
+       */
+      virtual RigidProjection<dim>
+      project_reference(const Point<dim> &p) const = 0;
+
+    private:
+      Tensor<1, dim> translation;
+    };
+
+
+    /**
+     * Rigid half-space. The obstacle occupies {x : (x - x_0) . nu < 0},
+     * i.e. the side behind the plane; nu is the outward normal of the
+     * obstacle surface, so the contact normal is n = -nu and
+     * g = -(p - x_0) . nu.
+     */
+    template <int dim>
+    class RigidPlane : public RigidObstacle<dim>
+    {
+    public:
+      /**
+       * @param point a point x_0 of the plane [m]
+       * @param outward_normal nu (normalised here), pointing out of the
+       *        obstacle
+       */
+      RigidPlane(const Point<dim> &point, const Tensor<1, dim> &outward_normal);
+
+    protected:
+      RigidProjection<dim>
+      project_reference(const Point<dim> &p) const override;
+
+    private:
+      Point<dim>     point;
+      Tensor<1, dim> outward_normal;
+    };
+
+
+    /**
+     * Rigid ball (a disk in 2D, a ball in 3D): the obstacle is
+     * {x : |x - c| < R}. g = R - |p - c|, n = -(p - c)/|p - c|. At p == c the
+     * direction is undefined and e_0 is used.
+     */
+    template <int dim>
+    class RigidSphere : public RigidObstacle<dim>
+    {
+    public:
+      /**
+       * @param center c [m]
+       * @param radius R [m], > 0
+       */
+      RigidSphere(const Point<dim> &center, const double radius);
+
+    protected:
+      RigidProjection<dim>
+      project_reference(const Point<dim> &p) const override;
+
+    private:
+      Point<dim> center;
+      double     radius;
+    };
+
+
+    /**
+     * Rigid solid cylinder {x : |P_a (x - a)| < R}, P_a = I - e (x) e the
+     * projector orthogonal to the axis direction e. g = R - |P_a (p - a)|,
+     * n = -P_a (p - a) / |P_a (p - a)|. In 2D the axis is normal to the
+     * plane and the cylinder is the disk of radius R around a (same as
+     * RigidSphere<2>). On the axis the direction is undefined and the
+     * first coordinate direction orthogonal to e is used.
+     */
+    template <int dim>
+    class RigidCylinder : public RigidObstacle<dim>
+    {
+    public:
+      /**
+       * 3D only. @param axis_point a [m] @param axis_direction e (normalised
+       * here) @param radius R [m], > 0
+       */
+      RigidCylinder(const Point<dim>     &axis_point,
+                    const Tensor<1, dim> &axis_direction,
+                    const double          radius);
+
+      /**
+       * 2D only: axis through axis_point, normal to the plane.
+       */
+      RigidCylinder(const Point<dim> &axis_point, const double radius);
+
+    protected:
+      RigidProjection<dim>
+      project_reference(const Point<dim> &p) const override;
+
+    private:
+      Point<dim>     axis_point;
+      Tensor<1, dim> axis_direction; // zero in 2D
+      double         radius;
+    };
+
+  } // namespace Contact
+} // namespace Signorini
+
+#endif

@@ -1,0 +1,361 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/fe/fe_q.h>
+
+#include <signorini/contact/projection.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      /**
+       * FE_Q<dim-1>(degree) for degree 1 or 2, built once per process
+       * (thread-safe function-local statics).
+       */
+      template <int dim>
+      const FE_Q<dim - 1> &
+      face_element(const unsigned int n_points)
+      {
+        static const FE_Q<dim - 1> q1(1);
+        static const FE_Q<dim - 1> q2(2);
+        if (n_points == q1.n_dofs_per_cell())
+          return q1;
+        AssertThrow(n_points == q2.n_dofs_per_cell(),
+                    ExcMessage("project_onto_face: a face needs 2 (Q1) or 3 "
+                               "(Q2) points in 2D, 4 (Q1) or 9 (Q2) in 3D."));
+        return q2;
+      }
+
+      /**
+       * Face map and its first and second derivatives at xi.
+       */
+      template <int dim>
+      struct FaceMapValues
+      {
+        Point<dim>                              x;
+        std::array<Tensor<1, dim>, dim - 1>     a;   // dx/dxi_k
+        Tensor<1, dim> a2[dim - 1][dim - 1] = {};    // d2x/dxi_k dxi_l
+      };
+
+      template <int dim>
+      FaceMapValues<dim>
+      evaluate_face_map(const FE_Q<dim - 1>           &fe,
+                        const std::vector<Point<dim>> &X,
+                        const Point<dim - 1>          &xi)
+      {
+        FaceMapValues<dim> v;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          v.a[k] = Tensor<1, dim>();
+        for (unsigned int n = 0; n < X.size(); ++n)
+          {
+            const double              N   = fe.shape_value(n, xi);
+            const Tensor<1, dim - 1>  dN  = fe.shape_grad(n, xi);
+            const Tensor<2, dim - 1>  ddN = fe.shape_grad_grad(n, xi);
+            for (unsigned int d = 0; d < dim; ++d)
+              v.x[d] += N * X[n][d];
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              {
+                v.a[k] += dN[k] * X[n];
+                for (unsigned int l = 0; l < dim - 1; ++l)
+                  v.a2[k][l] += ddN[k][l] * X[n];
+              }
+          }
+        return v;
+      }
+
+      template <int dim>
+      Tensor<1, dim>
+      unit_normal(const std::array<Tensor<1, dim>, dim - 1> &a);
+
+      template <>
+      Tensor<1, 2>
+      unit_normal<2>(const std::array<Tensor<1, 2>, 1> &a)
+      {
+        Tensor<1, 2> n;
+        n[0] = a[0][1];
+        n[1] = -a[0][0];
+        return n / n.norm();
+      }
+
+      template <>
+      Tensor<1, 3>
+      unit_normal<3>(const std::array<Tensor<1, 3>, 2> &a)
+      {
+        const Tensor<1, 3> n = cross_product_3d(a[0], a[1]);
+        return n / n.norm();
+      }
+
+      /**
+       * Is the symmetric (dim-1)x(dim-1) matrix H positive definite?
+       */
+      template <int d>
+      bool
+      positive_definite(const Tensor<2, d> &H)
+      {
+        if (d == 1)
+          return H[0][0] > 0.;
+        return H[0][0] > 0. && determinant(H) > 0.;
+      }
+    } // namespace
+
+
+    template <int dim>
+    FaceProjection<dim>
+    project_onto_face(const Point<dim>              &p,
+                      const std::vector<Point<dim>> &face_points,
+                      const Point<dim>              &inside_point,
+                      const double                   tol_xi,
+                      const unsigned int             max_iterations)
+    {
+      static_assert(dim == 2 || dim == 3, "dim must be 2 or 3");
+      const FE_Q<dim - 1> &fe = face_element<dim>(face_points.size());
+
+      // Steps below this (reference coordinates) end the iteration; the step
+      // is applied, so quadratic convergence leaves ~1e-20 behind.
+      constexpr double step_tolerance = 1e-10;
+      // Largest accepted step in reference coordinates (damping).
+      constexpr double max_step = 0.5;
+
+      const auto objective = [&](const Point<dim - 1> &xi) {
+        return 0.5 * (evaluate_face_map(fe, face_points, xi).x - p)
+                       .norm_square();
+      };
+
+      FaceProjection<dim> result;
+      Point<dim - 1>      xi;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        xi[k] = 0.5;
+
+      for (unsigned int it = 0; it < max_iterations; ++it)
+        {
+          result.n_iterations = it + 1;
+          const FaceMapValues<dim> v = evaluate_face_map(fe, face_points, xi);
+          const Tensor<1, dim>     r = v.x - p;
+
+          Tensor<1, dim - 1> grad;
+          Tensor<2, dim - 1> H_gn, H;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              grad[k] = r * v.a[k];
+              for (unsigned int l = 0; l < dim - 1; ++l)
+                {
+                  H_gn[k][l] = v.a[k] * v.a[l];
+                  H[k][l]    = H_gn[k][l] + r * v.a2[k][l];
+                }
+            }
+          if (!positive_definite(H))
+            H = H_gn;
+          AssertThrow(positive_definite(H),
+                      ExcMessage("project_onto_face: degenerate face."));
+
+          Tensor<1, dim - 1> step = -(invert(H) * grad);
+          double             step_max = 0.;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            step_max = std::max(step_max, std::abs(step[k]));
+          if (step_max > max_step)
+            {
+              step *= max_step / step_max;
+              step_max = max_step;
+            }
+
+          if (step_max < step_tolerance)
+            {
+              xi += step;
+              result.converged = true;
+              break;
+            }
+
+          // Backtracking (Armijo) on f; a descent direction since H is SPD.
+          const double f0    = 0.5 * r.norm_square();
+          const double slope = grad * step;
+          double       alpha = 1.;
+          for (unsigned int b = 0; b < 20; ++b, alpha *= 0.5)
+            if (objective(xi + alpha * step) <= f0 + 1e-4 * alpha * slope)
+              break;
+          xi += alpha * step;
+        }
+
+      const FaceMapValues<dim> v = evaluate_face_map(fe, face_points, xi);
+      result.xi       = xi;
+      result.x_m      = v.x;
+      result.tangents = v.a;
+      result.normal   = unit_normal<dim>(v.a);
+      if (result.normal * (inside_point - result.x_m) < 0.)
+        result.normal = -result.normal;
+      result.gap = (p - result.x_m) * result.normal;
+
+      result.violation = 0.;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        result.violation =
+          std::max({result.violation, -xi[k], xi[k] - 1.});
+      result.inside = (result.violation <= tol_xi);
+      return result;
+    }
+
+
+    // ------------------------------------------------------------ rigid
+
+    template <int dim>
+    void
+    RigidObstacle<dim>::set_translation(const Tensor<1, dim> &t)
+    {
+      translation = t;
+    }
+
+    template <int dim>
+    const Tensor<1, dim> &
+    RigidObstacle<dim>::get_translation() const
+    {
+      return translation;
+    }
+
+    template <int dim>
+    RigidProjection<dim>
+    RigidObstacle<dim>::project(const Point<dim> &p) const
+    {
+      RigidProjection<dim> r = project_reference(p - translation);
+      r.x_m += translation;
+      return r;
+    }
+
+
+    template <int dim>
+    RigidPlane<dim>::RigidPlane(const Point<dim>     &point,
+                                const Tensor<1, dim> &outward_normal)
+      : point(point)
+      , outward_normal(outward_normal / outward_normal.norm())
+    {
+      AssertThrow(outward_normal.norm() > 0., ExcMessage("zero normal"));
+    }
+
+    template <int dim>
+    RigidProjection<dim>
+    RigidPlane<dim>::project_reference(const Point<dim> &p) const
+    {
+      const double         height = (p - point) * outward_normal;
+      RigidProjection<dim> r;
+      r.x_m    = p - height * outward_normal;
+      r.normal = -outward_normal;
+      r.gap    = -height;
+      return r;
+    }
+
+
+    template <int dim>
+    RigidSphere<dim>::RigidSphere(const Point<dim> &center, const double radius)
+      : center(center)
+      , radius(radius)
+    {
+      AssertThrow(radius > 0., ExcMessage("radius must be > 0"));
+    }
+
+    template <int dim>
+    RigidProjection<dim>
+    RigidSphere<dim>::project_reference(const Point<dim> &p) const
+    {
+      const Tensor<1, dim> d    = p - center;
+      const double         dist = d.norm();
+      Tensor<1, dim>       e;
+      if (dist > 0.)
+        e = d / dist;
+      else
+        e[0] = 1.;
+      RigidProjection<dim> r;
+      r.x_m    = center + radius * e;
+      r.normal = -e;
+      r.gap    = radius - dist;
+      return r;
+    }
+
+
+    template <int dim>
+    RigidCylinder<dim>::RigidCylinder(const Point<dim>     &axis_point,
+                                      const Tensor<1, dim> &axis_direction,
+                                      const double          radius)
+      : axis_point(axis_point)
+      , axis_direction(axis_direction / axis_direction.norm())
+      , radius(radius)
+    {
+      AssertThrow(dim == 3,
+                  ExcMessage("RigidCylinder: the axis-direction constructor "
+                             "is 3D only; in 2D use (axis_point, radius)."));
+      AssertThrow(axis_direction.norm() > 0., ExcMessage("zero axis"));
+      AssertThrow(radius > 0., ExcMessage("radius must be > 0"));
+    }
+
+    template <int dim>
+    RigidCylinder<dim>::RigidCylinder(const Point<dim> &axis_point,
+                                      const double      radius)
+      : axis_point(axis_point)
+      , radius(radius)
+    {
+      AssertThrow(dim == 2,
+                  ExcMessage("RigidCylinder: (axis_point, radius) is 2D "
+                             "only; in 3D give the axis direction."));
+      AssertThrow(radius > 0., ExcMessage("radius must be > 0"));
+    }
+
+    template <int dim>
+    RigidProjection<dim>
+    RigidCylinder<dim>::project_reference(const Point<dim> &p) const
+    {
+      // In 2D axis_direction is zero and the radial part is all of p - a.
+      Tensor<1, dim> d = p - axis_point;
+      d -= (d * axis_direction) * axis_direction;
+      const double   dist = d.norm();
+      Tensor<1, dim> e;
+      if (dist > 0.)
+        e = d / dist;
+      else
+        {
+          // first coordinate direction not parallel to the axis
+          for (unsigned int i = 0; i < dim; ++i)
+            {
+              Tensor<1, dim> t;
+              t[i] = 1.;
+              t -= (t * axis_direction) * axis_direction;
+              if (t.norm() > 1e-3)
+                {
+                  e = t / t.norm();
+                  break;
+                }
+            }
+        }
+      RigidProjection<dim> r;
+      r.x_m    = p + (radius - dist) * e;
+      r.normal = -e;
+      r.gap    = radius - dist;
+      return r;
+    }
+
+
+    // ------------------------------------------------- instantiations
+
+#define SIGNORINI_INSTANTIATE(dim)                                         \
+  template FaceProjection<dim> project_onto_face<dim>(                    \
+    const Point<dim> &,                                                    \
+    const std::vector<Point<dim>> &,                                       \
+    const Point<dim> &,                                                    \
+    const double,                                                          \
+    const unsigned int);                                                   \
+  template class RigidObstacle<dim>;                                       \
+  template class RigidPlane<dim>;                                          \
+  template class RigidSphere<dim>;                                         \
+  template class RigidCylinder<dim>;
+
+    SIGNORINI_INSTANTIATE(2)
+    SIGNORINI_INSTANTIATE(3)
+
+#undef SIGNORINI_INSTANTIATE
+
+  } // namespace Contact
+} // namespace Signorini

@@ -1,0 +1,459 @@
+// Test of Signorini::Contact::project_onto_face and the rigid obstacles
+// (formulation.md section 2). Writes "output" via deallog; measured errors go
+// to std::cout only (they are round-off and not reproducible bit for bit).
+
+#include <deal.II/base/logstream.h>
+
+#include <deal.II/fe/fe_q.h>
+
+#include <signorini/contact/projection.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+using namespace dealii;
+using namespace Signorini::Contact;
+
+namespace
+{
+  std::string
+  fmt(const double v, const unsigned int digits = 8)
+  {
+    const double       eps = 0.5 * std::pow(10., -double(digits));
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits)
+      << (std::abs(v) < eps ? 0. : v);
+    return s.str();
+  }
+
+  template <int d, typename T>
+  std::string
+  fmt(const T &t, const unsigned int digits = 8)
+  {
+    std::string s = "(";
+    for (unsigned int i = 0; i < d; ++i)
+      s += fmt(t[i], digits) + (i + 1 < d ? ", " : ")");
+    return s;
+  }
+
+
+  void
+  verdict(const std::string &what, const double error, const double tol)
+  {
+    std::cout << std::setw(58) << std::left << what << " error "
+              << std::scientific << std::setprecision(2) << error
+              << std::endl;
+    std::ostringstream t;
+    t << std::scientific << std::setprecision(0) << tol;
+    deallog << what << " recovered to " << t.str() << ": "
+            << (error <= tol ? "yes" : "no") << std::endl;
+    AssertThrow(error <= tol, ExcMessage(what + " not recovered"));
+  }
+
+  void
+  expect(const std::string &what, const bool ok)
+  {
+    deallog << what << ": " << (ok ? "yes" : "no") << std::endl;
+    AssertThrow(ok, ExcMessage(what + " failed"));
+  }
+
+  template <int dim>
+  double
+  diameter(const std::vector<Point<dim>> &X)
+  {
+    double h = 0.;
+    for (const auto &a : X)
+      for (const auto &b : X)
+        h = std::max(h, a.distance(b));
+    return h;
+  }
+
+  /**
+   * p = x* + g n*; project and compare with (xi*, x*, n*, g). Relative
+   * tolerance 1e-10 with respect to the face diameter.
+   */
+  template <int dim>
+  void
+  check_recovery(const std::string             &name,
+                 const std::vector<Point<dim>> &X,
+                 const Point<dim>              &inside,
+                 const Point<dim - 1>          &xi_star,
+                 const Point<dim>              &x_star,
+                 const Tensor<1, dim>          &n_star,
+                 const double                   g)
+  {
+    const double     h = diameter(X);
+    const Point<dim> p = x_star + g * n_star;
+    const auto       r = project_onto_face(p, X, inside);
+    deallog << name << ": g = " << fmt(g, 4) << ", xi = " << fmt<dim - 1>(r.xi)
+            << ", gap = " << fmt(r.gap) << std::endl;
+    expect(name + " converged and inside", r.converged && r.inside);
+    verdict(name + " xi", (r.xi - xi_star).norm(), 1e-10);
+    verdict(name + " x_m", (r.x_m - x_star).norm() / h, 1e-10);
+    verdict(name + " normal", (r.normal - n_star).norm(), 1e-10);
+    verdict(name + " gap", std::abs(r.gap - g) / h, 1e-10);
+    std::cout << "    (" << r.n_iterations << " Newton iterations)\n";
+  }
+
+  // Face map of the discrete FE_Q face, evaluated independently here.
+  template <int dim>
+  void
+  discrete_face(const std::vector<Point<dim>> &X,
+                const Point<dim - 1>          &xi,
+                const Point<dim>              &inside,
+                Point<dim>                    &x,
+                Tensor<1, dim>                &n)
+  {
+    const FE_Q<dim - 1> fe(X.size() == (dim == 2 ? 3u : 9u) ? 2 : 1);
+    x = Point<dim>();
+    Tensor<1, dim> a[dim - 1];
+    for (unsigned int k = 0; k < X.size(); ++k)
+      {
+        x += fe.shape_value(k, xi) * X[k];
+        for (unsigned int d = 0; d < dim - 1; ++d)
+          a[d] += fe.shape_grad(k, xi)[d] * X[k];
+      }
+    if constexpr (dim == 2)
+      n = Tensor<1, 2>({a[0][1], -a[0][0]});
+    else
+      n = cross_product_3d(a[0], a[1]);
+    n /= n.norm();
+    if (n * (inside - x) < 0)
+      n = -n;
+  }
+
+  // ---------------------------------------------------------------- cases
+
+  void
+  test_ordering()
+  {
+    deallog << "--- FE_Q<dim-1> face support point ordering" << std::endl;
+    for (unsigned int deg = 1; deg <= 2; ++deg)
+      {
+        const FE_Q<1> fe1(deg);
+        const FE_Q<2> fe2(deg);
+        std::string   s1, s2;
+        for (const auto &q : fe1.get_unit_support_points())
+          s1 += " " + fmt<1>(q, 1);
+        for (const auto &q : fe2.get_unit_support_points())
+          s2 += " " + fmt<2>(q, 1);
+        deallog << "FE_Q<1>(" << deg << "):" << s1 << std::endl;
+        deallog << "FE_Q<2>(" << deg << "):" << s2 << std::endl;
+        double err = 0.;
+        for (unsigned int i = 0; i < fe2.n_dofs_per_cell(); ++i)
+          for (unsigned int j = 0; j < fe2.n_dofs_per_cell(); ++j)
+            err = std::max(err,
+                           std::abs(fe2.shape_value(
+                                      i, fe2.get_unit_support_points()[j]) -
+                                    (i == j)));
+        for (unsigned int i = 0; i < fe1.n_dofs_per_cell(); ++i)
+          for (unsigned int j = 0; j < fe1.n_dofs_per_cell(); ++j)
+            err = std::max(err,
+                           std::abs(fe1.shape_value(
+                                      i, fe1.get_unit_support_points()[j]) -
+                                    (i == j)));
+        verdict("Q" + std::to_string(deg) + " N_i(x_j) = delta_ij", err, 1e-14);
+      }
+  }
+
+  void
+  test_q1_line()
+  {
+    deallog << "--- Q1 line (2D)" << std::endl;
+    const std::vector<Point<2>> X = {Point<2>(1., 2.), Point<2>(4., 6.)};
+    const Tensor<1, 2>          n({-0.8, 0.6}); // into the master body
+    const Point<2>              inside = Point<2>(2.5, 4.) + 2. * n;
+    const Point<1>              xi(0.3);
+    const Point<2>              x = X[0] + 0.3 * (X[1] - X[0]);
+    check_recovery<2>("Q1 line, penetrating", X, inside, xi, x, n, 0.7);
+    check_recovery<2>("Q1 line, separated", X, inside, xi, x, n, -1.3);
+  }
+
+  void
+  test_q1_quad()
+  {
+    deallog << "--- Q1 quad, planar (3D)" << std::endl;
+    {
+      const Point<3>     O(0.5, -1., 2.);
+      const Tensor<1, 3> A({2., 0., 0.5}), B({0.3, 1.5, 0.2});
+      const std::vector<Point<3>> X = {O, O + A, O + B, O + A + B};
+      Tensor<1, 3>                n = cross_product_3d(A, B);
+      n /= n.norm();
+      const Point<3> inside = O + 0.5 * (A + B) - 0.7 * n; // n points away
+      n                     = -n;
+      const Point<2> xi(0.2, 0.65);
+      const Point<3> x = O + 0.2 * A + 0.65 * B;
+      check_recovery<3>("Q1 planar quad, penetrating", X, inside, xi, x, n, 0.4);
+      check_recovery<3>("Q1 planar quad, separated", X, inside, xi, x, n, -2.);
+    }
+    deallog << "--- Q1 quad, non-planar bilinear (3D)" << std::endl;
+    {
+      const std::vector<Point<3>> X = {Point<3>(0., 0., 0.),
+                                       Point<3>(1., 0., 0.1),
+                                       Point<3>(0., 1., -0.1),
+                                       Point<3>(1.2, 1.1, 0.4)};
+      const double   u = 0.62, v = 0.27;
+      const Point<3> x = (1 - u) * (1 - v) * X[0] + u * (1 - v) * X[1] +
+                         (1 - u) * v * X[2] + u * v * X[3];
+      const Tensor<1, 3> au = (1 - v) * (X[1] - X[0]) + v * (X[3] - X[2]);
+      const Tensor<1, 3> av = (1 - u) * (X[2] - X[0]) + u * (X[3] - X[1]);
+      Tensor<1, 3>       n  = cross_product_3d(au, av);
+      n /= n.norm();
+      if (n[2] > 0) // master body below (z < 0)
+        n = -n;
+      const Point<3> inside(0.5, 0.5, -1.);
+      check_recovery<3>(
+        "Q1 bilinear quad, penetrating", X, inside, Point<2>(u, v), x, n, 0.15);
+      check_recovery<3>(
+        "Q1 bilinear quad, separated", X, inside, Point<2>(u, v), x, n, -0.3);
+    }
+  }
+
+  void
+  test_q2_arc()
+  {
+    deallog << "--- Q2 line on a circle arc (2D)" << std::endl;
+    const Point<2> C(0.5, -0.2);
+    const double   R   = 2.;
+    const auto     arc = [&](const double t) {
+      return C + R * Point<2>(std::cos(t), std::sin(t));
+    };
+    // FE_Q<1>(2) order: end 0, end 1, midpoint
+    const std::vector<Point<2>> X = {arc(0.3), arc(0.9), arc(0.6)};
+    const Point<1>              xi(0.37);
+    Point<2>                    x;
+    Tensor<1, 2>                n;
+    discrete_face<2>(X, xi, C, x, n);
+    deallog << "discrete arc radius at xi*: " << fmt(x.distance(C), 6)
+            << " (circle: " << fmt(R, 6) << ")" << std::endl;
+    check_recovery<2>("Q2 arc, penetrating", X, C, xi, x, n, 0.05);
+    check_recovery<2>("Q2 arc, separated", X, C, xi, x, n, -0.3);
+  }
+
+  void
+  test_q2_sphere()
+  {
+    deallog << "--- Q2 quad on a sphere patch (3D)" << std::endl;
+    const Point<3> C(0.1, 0.2, -0.3);
+    const double   R      = 1.5;
+    const auto     sphere = [&](const Point<2> &s) {
+      const double th = 0.2 + 0.5 * s[0], ph = 0.9 + 0.4 * s[1];
+      return C + R * Point<3>(std::sin(ph) * std::cos(th),
+                              std::sin(ph) * std::sin(th),
+                              std::cos(ph));
+    };
+    const FE_Q<2>         fe(2); // must outlive the loop below
+    std::vector<Point<3>> X;
+    for (const auto &s : fe.get_unit_support_points())
+      X.push_back(sphere(s));
+    const Point<2> xi(0.31, 0.72);
+    Point<3>       x;
+    Tensor<1, 3>   n;
+    discrete_face<3>(X, xi, C, x, n);
+    deallog << "discrete patch radius at xi*: " << fmt(x.distance(C), 6)
+            << " (sphere: " << fmt(R, 6) << ")" << std::endl;
+    check_recovery<3>("Q2 sphere patch, penetrating", X, C, xi, x, n, 0.05);
+    check_recovery<3>("Q2 sphere patch, separated", X, C, xi, x, n, -0.4);
+  }
+
+  void
+  test_outside()
+  {
+    deallog << "--- projections outside the face" << std::endl;
+    const std::vector<Point<2>> L = {Point<2>(0., 0.), Point<2>(1., 0.)};
+    const Point<2>              inside(0.5, -1.);
+    {
+      const auto r = project_onto_face(Point<2>(1.2, 0.1), L, inside);
+      deallog << "line, p = (1.2, 0.1): xi = " << fmt<1>(r.xi)
+              << ", inside = " << (r.inside ? "true" : "false")
+              << ", violation = " << fmt(r.violation)
+              << ", gap = " << fmt(r.gap) << std::endl;
+      expect("converged, inside == false", r.converged && !r.inside);
+      verdict("violation 0.2", std::abs(r.violation - 0.2), 1e-10);
+      verdict("gap -0.1 (separated)", std::abs(r.gap + 0.1), 1e-10);
+    }
+    {
+      const auto r =
+        project_onto_face(Point<2>(1. + 1e-6, -0.05), L, inside, 1e-8);
+      deallog << "line, 1e-6 beyond the end, tol_xi = 1e-8: inside = "
+              << (r.inside ? "true" : "false") << std::endl;
+      expect("slightly outside -> inside == false", !r.inside);
+      verdict("violation 1e-6", std::abs(r.violation - 1e-6), 1e-12);
+      const auto q =
+        project_onto_face(Point<2>(1. + 1e-10, -0.05), L, inside, 1e-8);
+      deallog << "line, 1e-10 beyond the end, tol_xi = 1e-8: inside = "
+              << (q.inside ? "true" : "false") << std::endl;
+      expect("within tol_xi -> inside == true", q.inside);
+    }
+    {
+      // convex corner at (1,0): the point projects outside both faces; the
+      // smaller violation selects the face.
+      const std::vector<Point<2>> F2 = {Point<2>(1., 0.), Point<2>(2., -1.)};
+      const Point<2>              p(1.05, 0.2);
+      const auto                  r1 = project_onto_face(p, L, inside);
+      const auto                  r2 = project_onto_face(p, F2, inside);
+      deallog << "corner: face 1 violation " << fmt(r1.violation)
+              << ", face 2 violation " << fmt(r2.violation) << std::endl;
+      expect("both outside, face 1 picked",
+             !r1.inside && !r2.inside && r1.violation < r2.violation);
+      verdict("face 1 violation 0.05", std::abs(r1.violation - 0.05), 1e-10);
+      verdict("face 2 violation 0.075", std::abs(r2.violation - 0.075), 1e-10);
+    }
+    {
+      const Tensor<1, 3>          A({1., 0., 0.}), B({0., 2., 0.});
+      const std::vector<Point<3>> Q = {Point<3>(),
+                                       Point<3>() + A,
+                                       Point<3>() + B,
+                                       Point<3>() + A + B};
+      const auto r = project_onto_face(Point<3>(-0.05, 2.04, 0.3),
+                                       Q,
+                                       Point<3>(0.5, 1., -1.));
+      deallog << "quad, beyond a corner: xi = " << fmt<2>(r.xi)
+              << ", violation = " << fmt(r.violation) << std::endl;
+      expect("quad corner inside == false", r.converged && !r.inside);
+      verdict("quad corner violation 0.05",
+              std::abs(r.violation - 0.05),
+              1e-10);
+      verdict("quad corner gap -0.3", std::abs(r.gap + 0.3), 1e-10);
+    }
+  }
+
+  template <int dim>
+  void
+  check_rigid(const std::string          &name,
+              const RigidProjection<dim> &r,
+              const Point<dim>           &x_m,
+              const Tensor<1, dim>       &n,
+              const double                g)
+  {
+    deallog << name << ": x_m = " << fmt<dim>(r.x_m)
+            << ", n = " << fmt<dim>(r.normal) << ", g = " << fmt(r.gap)
+            << std::endl;
+    verdict(name + " x_m", (r.x_m - x_m).norm(), 1e-12);
+    verdict(name + " normal", (r.normal - n).norm(), 1e-12);
+    verdict(name + " gap", std::abs(r.gap - g), 1e-12);
+    expect(name + " normal unit", std::abs(r.normal.norm() - 1.) < 1e-14);
+  }
+
+  void
+  test_rigid()
+  {
+    deallog << "--- rigid obstacles" << std::endl;
+    {
+      // obstacle y < 1 (outward normal +y); contact normal -y (into it)
+      RigidPlane<2> plane(Point<2>(0., 1.), Tensor<1, 2>({0., 3.}));
+      check_rigid<2>("plane 2D, penetrating",
+                     plane.project(Point<2>(0.3, 0.9)),
+                     Point<2>(0.3, 1.),
+                     Tensor<1, 2>({0., -1.}),
+                     0.1);
+      plane.set_translation(Tensor<1, 2>({7., 0.5}));
+      check_rigid<2>("plane 2D, translated (0,0.5)",
+                     plane.project(Point<2>(0.3, 0.9)),
+                     Point<2>(0.3, 1.5),
+                     Tensor<1, 2>({0., -1.}),
+                     0.6);
+      check_rigid<2>("plane 2D, translated, separated",
+                     plane.project(Point<2>(-2., 2.)),
+                     Point<2>(-2., 1.5),
+                     Tensor<1, 2>({0., -1.}),
+                     -0.5);
+    }
+    {
+      const Tensor<1, 3> nu({1., 2., 2.}); // |nu| = 3
+      RigidPlane<3>      plane(Point<3>(1., 0., 0.), nu);
+      // p = x0 + 0.5 t - 0.3 nu/3 with t orthogonal to nu
+      const Tensor<1, 3> t({2., -1., 0.});
+      const Point<3>     p = Point<3>(1., 0., 0.) + 0.5 * t - 0.1 * nu;
+      check_rigid<3>("plane 3D, penetrating",
+                     plane.project(p),
+                     Point<3>(1., 0., 0.) + 0.5 * t,
+                     -nu / 3.,
+                     0.3);
+    }
+    {
+      RigidSphere<2> circle(Point<2>(1., 1.), 2.);
+      check_rigid<2>("circle, penetrating",
+                     circle.project(Point<2>(1. + 0.6 * 1.5, 1. + 0.8 * 1.5)),
+                     Point<2>(1. + 0.6 * 2., 1. + 0.8 * 2.),
+                     Tensor<1, 2>({-0.6, -0.8}),
+                     0.5);
+      circle.set_translation(Tensor<1, 2>({0., -1.}));
+      check_rigid<2>("circle, translated (0,-1), separated",
+                     circle.project(Point<2>(1., -3.5)),
+                     Point<2>(1., -2.),
+                     Tensor<1, 2>({0., 1.}),
+                     -1.5);
+    }
+    {
+      const Point<3> c(1., 2., 3.);
+      RigidSphere<3> sphere(c, 2.);
+      check_rigid<3>("sphere, penetrating",
+                     sphere.project(c + Tensor<1, 3>({0., 0., 1.5})),
+                     c + Tensor<1, 3>({0., 0., 2.}),
+                     Tensor<1, 3>({0., 0., -1.}),
+                     0.5);
+      check_rigid<3>("sphere, separated",
+                     sphere.project(c + Tensor<1, 3>({1.8, 0., 2.4})),
+                     c + Tensor<1, 3>({1.2, 0., 1.6}),
+                     Tensor<1, 3>({-0.6, 0., -0.8}),
+                     -1.);
+    }
+    {
+      RigidCylinder<3> cyl(Point<3>(0., 0., 1.), Tensor<1, 3>({0., 0., 2.}), 1.);
+      check_rigid<3>("cylinder, separated",
+                     cyl.project(Point<3>(1.2, 1.6, 7.)),
+                     Point<3>(0.6, 0.8, 7.),
+                     Tensor<1, 3>({-0.6, -0.8, 0.}),
+                     -1.);
+      cyl.set_translation(Tensor<1, 3>({1., 0., 0.}));
+      check_rigid<3>("cylinder, translated (1,0,0), penetrating",
+                     cyl.project(Point<3>(1., -0.25, -4.)),
+                     Point<3>(1., -1., -4.),
+                     Tensor<1, 3>({0., 1., 0.}),
+                     0.75);
+      // oblique axis e = (1,1,0)/sqrt(2), p = a + 3 e + 0.5 z
+      RigidCylinder<3>   ob(Point<3>(), Tensor<1, 3>({1., 1., 0.}), 0.8);
+      const Tensor<1, 3> e = Tensor<1, 3>({1., 1., 0.}) / std::sqrt(2.);
+      check_rigid<3>("cylinder, oblique axis, penetrating",
+                     ob.project(Point<3>() + 3. * e +
+                                Tensor<1, 3>({0., 0., 0.5})),
+                     Point<3>() + 3. * e + Tensor<1, 3>({0., 0., 0.8}),
+                     Tensor<1, 3>({0., 0., -1.}),
+                     0.3);
+    }
+    {
+      RigidCylinder<2> disk(Point<2>(0., 0.), 1.);
+      check_rigid<2>("cylinder 2D (disk), penetrating",
+                     disk.project(Point<2>(0., -0.4)),
+                     Point<2>(0., -1.),
+                     Tensor<1, 2>({0., 1.}),
+                     0.6);
+    }
+  }
+} // namespace
+
+
+int
+main()
+{
+  std::ofstream logfile("output");
+  deallog.attach(logfile, /*print_job_id=*/false);
+  deallog.depth_console(0);
+
+  test_ordering();
+  test_q1_line();
+  test_q1_quad();
+  test_q2_arc();
+  test_q2_sphere();
+  test_outside();
+  test_rigid();
+
+  deallog << "OK" << std::endl;
+  std::cout << "all checks passed" << std::endl;
+  return 0;
+}
