@@ -2,7 +2,10 @@
 
 #include <signorini/core/parameters.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <numeric>
 #include <regex>
 #include <sstream>
 
@@ -86,9 +89,11 @@ namespace Signorini
       "direction; boundary faces numbered 0..3 (2D: x-, x+, y-, y+) or 0..5 "
       "(3D: x-, x+, y-, y+, z-, z+). ball segment: disc (2D) or ball (3D) of "
       "'Radius' around 'Centre', cut to the 'Segment' below the centre (its "
-      "flat face on top, curved face down); faces: 0 curved, 1 flat. cylinder "
-      "segment: the 2D disc segment extruded along z over 'Length' (3D; same "
-      "as ball segment in 2D); faces: 0 curved, 1 flat, 2 z-, 3 z+. file: "
+      "flat face on top, curved face down); faces: 0 curved, 1 flat top (y = "
+      "centre), for a quarter 2 the flat side x = centre and (3D) 3 the flat "
+      "side z = centre. cylinder segment: the 2D disc segment extruded along "
+      "z over 'Length' (3D; same as ball segment in 2D); faces: 0 curved, 1 "
+      "top, 2 side x = centre (quarter), 3 z-, 4 z+. file: "
       "'Mesh file' read by deal.II's GridIn.");
     prm.declare_entry("Lower corner",
                       "0, 0, 0",
@@ -206,6 +211,19 @@ namespace Signorini
                       Patterns::Integer(0, 12),
                       "Number of uniform refinements of the assembled mesh "
                       "[-].");
+    prm.declare_entry("Local refinements",
+                      "0",
+                      Patterns::Integer(0, 20),
+                      "Number of refinement cycles, after the global ones, of "
+                      "the cells whose centre satisfies 'Refinement region' "
+                      "(typically the contact zone). Neighbours are refined "
+                      "as needed to keep one hanging node per face.");
+    prm.declare_entry("Refinement region",
+                      "0",
+                      Patterns::Anything(),
+                      "Expression in x, y(, z) and 'Function constants': a "
+                      "cell is refined in each local cycle iff it is > 0 at "
+                      "the cell centre, e.g. '0.02 - sqrt(x^2 + y^2)'.");
     for (unsigned int b = 1; b <= counts.n_bodies; ++b)
       {
         prm.enter_subsection("Body " + std::to_string(b));
@@ -222,6 +240,8 @@ namespace Signorini
   {
     prm.enter_subsection("Geometry");
     global_refinements = prm.get_integer("Global refinements");
+    local_refinements  = prm.get_integer("Local refinements");
+    refinement_region  = prm.get("Refinement region");
     bodies.resize(counts.n_bodies);
     for (unsigned int b = 0; b < counts.n_bodies; ++b)
       {
@@ -597,6 +617,228 @@ namespace Signorini
 
 
   // ------------------------------------------------------ Reference solution
+  // --------------------------------------------------------------- Contact
+  void
+  ContactPairParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Slave boundary id",
+                      "",
+                      Patterns::List(Patterns::Integer(0, 255), 0),
+                      "Boundary id(s) of the slave surface (one body): the "
+                      "contact multipliers live on its nodes.");
+    prm.declare_entry("Master",
+                      "body",
+                      Patterns::Selection("body|plane|sphere|cylinder"),
+                      "Master surface: 'body' (the faces 'Master boundary "
+                      "id' of another meshed body) or a rigid analytic "
+                      "obstacle: 'plane' (half-space behind 'Obstacle point' "
+                      "with outward 'Obstacle normal'), 'sphere' (disc in "
+                      "2D: centre 'Obstacle point', 'Obstacle radius'), "
+                      "'cylinder' (3D: axis through 'Obstacle point' along "
+                      "'Obstacle axis'; a disc in 2D).");
+    prm.declare_entry("Master boundary id",
+                      "",
+                      Patterns::List(Patterns::Integer(0, 255), 0),
+                      "Boundary id(s) of the master surface for Master = "
+                      "body.");
+    prm.declare_entry("Obstacle point",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Reference point of a rigid obstacle at t = 0 [m]: a "
+                      "point of the plane, the centre of the sphere, a point "
+                      "of the cylinder axis.");
+    prm.declare_entry("Obstacle normal",
+                      "0, 1, 0",
+                      point_pattern(),
+                      "Outward normal of a rigid plane (pointing out of the "
+                      "obstacle, towards the slave body).");
+    prm.declare_entry("Obstacle axis",
+                      "0, 0, 1",
+                      point_pattern(),
+                      "Axis direction of a rigid cylinder (3D).");
+    prm.declare_entry("Obstacle radius",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Radius of a rigid sphere or cylinder [m].");
+    prm.declare_entry("Obstacle motion",
+                      "0; 0; 0",
+                      Patterns::Anything(),
+                      "Translation of the rigid obstacle as Dimension "
+                      "expressions of t (and 'Function constants') "
+                      "separated by ';' [m].");
+    prm.declare_entry("Friction coefficient",
+                      "0",
+                      Patterns::Double(0),
+                      "Coulomb coefficient mu [-]. 0: frictionless, and no "
+                      "friction unknowns are created.");
+    prm.declare_entry("Normal coefficient",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Dimensionless factor c_n of the normal augmentation "
+                      "rho_n = c_n E / h, with E the largest Young's modulus "
+                      "of the slave cells and h the mean slave face size. It "
+                      "changes the convergence path, not the solution. With "
+                      "'Penalty = true' it scales the penalty stiffness.");
+    prm.declare_entry("Tangential coefficient",
+                      "0.1",
+                      Patterns::Double(1e-300),
+                      "Dimensionless factor c_t of the friction augmentation "
+                      "rho_t = c_t rho_n / (mu p_ref) [1/m], p_ref the RMS "
+                      "contact pressure of the closed slave nodes at the "
+                      "current iterate (1e-3 E before contact closes): a "
+                      "sticking point then has a tangential stiffness of "
+                      "about c_t rho_n. Like c_n it changes the convergence "
+                      "path, not the solution.");
+    prm.declare_entry("Gap offset",
+                      "0",
+                      Patterns::Double(),
+                      "Constant g_0 added to the gap [m] (g > 0 means "
+                      "interpenetration).");
+  }
+
+
+  void
+  ContactPairParameters::parse_parameters(ParameterHandler &prm)
+  {
+    slave_ids  = to_unsigned(prm.get("Slave boundary id"));
+    master_ids = to_unsigned(prm.get("Master boundary id"));
+    const std::string m = prm.get("Master");
+    master = m == "body"  ? MasterType::body :
+             m == "plane" ? MasterType::plane :
+             m == "sphere" ? MasterType::sphere :
+                             MasterType::cylinder;
+    obstacle_point  = to_doubles(prm.get("Obstacle point"));
+    obstacle_normal = to_doubles(prm.get("Obstacle normal"));
+    obstacle_axis   = to_doubles(prm.get("Obstacle axis"));
+    obstacle_radius = prm.get_double("Obstacle radius");
+    obstacle_motion = split_expressions(prm.get("Obstacle motion"));
+    friction        = prm.get_double("Friction coefficient");
+    rho_n_factor    = prm.get_double("Normal coefficient");
+    rho_t_factor    = prm.get_double("Tangential coefficient");
+    gap_offset      = prm.get_double("Gap offset");
+  }
+
+
+  void
+  ContactParameters::declare_parameters(ParameterHandler &prm,
+                                        const Counts &    counts)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry("Number of contact pairs",
+                      "0",
+                      Patterns::Integer(0, 64),
+                      "Number of subsections 'Pair k', k = 1..N. 0: no "
+                      "contact.");
+    prm.declare_entry("Integration rule",
+                      "nodal",
+                      Patterns::Selection("nodal|gauss|simpson|newton-cotes"),
+                      "Contact points on the slave faces (formulation.md 6): "
+                      "nodal (the face nodes: trapezoid for Q1, Simpson for "
+                      "Q2), gauss (Gauss-Legendre with 'Integration order' "
+                      "points per direction), simpson (composite Simpson "
+                      "with 'Integration order' panels per direction), "
+                      "newton-cotes (closed Newton-Cotes of degree "
+                      "'Integration order' = 1, 2, 4 or 6).");
+    prm.declare_entry("Integration order",
+                      "2",
+                      Patterns::Integer(1, 12),
+                      "Order of the gauss, simpson or newton-cotes rule.");
+    prm.declare_entry("Normal",
+                      "master",
+                      Patterns::Selection("master|slave|average"),
+                      "Contact normal: the master normal at the projection "
+                      "(any rule), or the slave normal / the average of both "
+                      "(nodal rule only).");
+    prm.declare_entry("Initial status",
+                      "penetrating",
+                      Patterns::Selection("open|penetrating|closed"),
+                      "Status of the contact points at the first Newton "
+                      "iteration of the run: open, closed where penetrating "
+                      "(g > 0), or all closed (holds bodies that only "
+                      "contact supports; open points are released by "
+                      "Newton).");
+    prm.declare_entry("Friction threshold",
+                      "newton",
+                      Patterns::Selection("newton|frozen"),
+                      "lambda_f = current lambda (newton, formulation.md 3.3) "
+                      "or lambda of the previous geometric iteration "
+                      "(frozen).");
+    prm.declare_entry("Threshold coupling",
+                      "true",
+                      Patterns::Bool(),
+                      "Keep K_fc, the derivative of the friction rows with "
+                      "respect to lambda (exact Jacobian; code_aster drops "
+                      "it).");
+    prm.declare_entry("Penalty",
+                      "false",
+                      Patterns::Bool(),
+                      "Penalty variant of the normal law: the contact force "
+                      "is rho_n g; lambda is post-processed.");
+    prm.declare_entry("Projection tolerance",
+                      "0.05",
+                      Patterns::Double(0),
+                      "A projection outside a master face by at most this "
+                      "fraction of the face's parameter range is accepted "
+                      "(closest of the candidates).");
+    prm.declare_entry("Geometric tolerance",
+                      "0.01",
+                      Patterns::Double(0),
+                      "The geometric loop (re-pairing) stops when the "
+                      "largest displacement change since the last pairing "
+                      "is at most this fraction of the step's displacement "
+                      "increment.");
+    prm.declare_entry("Maximum geometric iterations",
+                      "10",
+                      Patterns::Integer(1, 1000),
+                      "Cap of the geometric loop; reaching it fails the step "
+                      "(which is then cut).");
+    for (unsigned int k = 1; k <= counts.n_pairs; ++k)
+      {
+        prm.enter_subsection("Pair " + std::to_string(k));
+        ContactPairParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  void
+  ContactParameters::parse_parameters(ParameterHandler &prm,
+                                      const Counts &    counts)
+  {
+    prm.enter_subsection("Contact");
+    const std::string r = prm.get("Integration rule");
+    rule  = r == "nodal"   ? IntegrationRule::nodal :
+            r == "gauss"   ? IntegrationRule::gauss :
+            r == "simpson" ? IntegrationRule::simpson :
+                             IntegrationRule::newton_cotes;
+    order = prm.get_integer("Integration order");
+    const std::string n = prm.get("Normal");
+    normal = n == "master" ? NormalChoice::master :
+             n == "slave"  ? NormalChoice::slave :
+                             NormalChoice::average;
+    const std::string i = prm.get("Initial status");
+    initial_status = i == "open"        ? InitialStatus::open :
+                     i == "penetrating" ? InitialStatus::penetrating :
+                                          InitialStatus::closed;
+    frozen_threshold         = prm.get("Friction threshold") == "frozen";
+    threshold_coupling       = prm.get_bool("Threshold coupling");
+    penalty                  = prm.get_bool("Penalty");
+    projection_tolerance     = prm.get_double("Projection tolerance");
+    geometric_tolerance      = prm.get_double("Geometric tolerance");
+    max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
+    pairs.resize(counts.n_pairs);
+    for (unsigned int k = 0; k < counts.n_pairs; ++k)
+      {
+        prm.enter_subsection("Pair " + std::to_string(k + 1));
+        pairs[k].parse_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  // ------------------------------------------------------------- Reference
   void
   ReferenceParameters::declare_parameters(ParameterHandler &prm)
   {
@@ -619,6 +861,52 @@ namespace Signorini
                       Patterns::Double(0),
                       "Relative error below which the comparison is "
                       "reported as PASS.");
+    prm.declare_entry("Maximum contact pressure",
+                      "0",
+                      Patterns::Double(0),
+                      "Reference for the largest contact pressure p0 = "
+                      "max(-lambda) at the contact points [Pa]; 0: not "
+                      "checked.");
+    prm.declare_entry("Pressure tolerance",
+                      "0.02",
+                      Patterns::Double(0),
+                      "Relative tolerance of the p0 check.");
+    prm.declare_entry("Contact half-width",
+                      "0",
+                      Patterns::Double(0),
+                      "Reference contact half-width a (or radius in 3D) [m], "
+                      "measured from 'Contact centre'; 0: not checked. The "
+                      "computed a is midway between the farthest closed "
+                      "point and the nearest open point beyond it.");
+    prm.declare_entry("Contact centre",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Centre of the contact zone for the half-width [m].");
+    prm.declare_entry("Half-width tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Absolute tolerance of the half-width check [m] "
+                      "(typically one slave element).");
+    prm.declare_entry("Contact pressure",
+                      "",
+                      Patterns::Anything(),
+                      "Exact contact pressure p(x, y, z) [Pa] on the slave "
+                      "surface; empty: not checked. The run prints the "
+                      "relative L2 error over the contact points.");
+    prm.declare_entry("Pressure L2 tolerance",
+                      "0.05",
+                      Patterns::Double(0),
+                      "Tolerance of the relative L2 pressure error.");
+    prm.declare_entry("Point values",
+                      "",
+                      Patterns::Anything(),
+                      "Displacement values to check, separated by ';', each "
+                      "'x, y[, z] : component : value' with component x, y "
+                      "or z, e.g. '0.00125, 0 : x : 2.72e-5'.");
+    prm.declare_entry("Point value tolerance",
+                      "0.05",
+                      Patterns::Double(0),
+                      "Relative tolerance of the point value checks.");
     prm.leave_subsection();
   }
 
@@ -630,6 +918,31 @@ namespace Signorini
     displacement = split_expressions(prm.get("Displacement"));
     stress       = split_expressions(prm.get("Stress"));
     tolerance    = prm.get_double("Tolerance");
+    max_pressure           = prm.get_double("Maximum contact pressure");
+    pressure_tolerance     = prm.get_double("Pressure tolerance");
+    half_width             = prm.get_double("Contact half-width");
+    contact_centre         = to_doubles(prm.get("Contact centre"));
+    half_width_tolerance   = prm.get_double("Half-width tolerance");
+    contact_pressure       = prm.get("Contact pressure");
+    pressure_l2_tolerance  = prm.get_double("Pressure L2 tolerance");
+    point_value_tolerance  = prm.get_double("Point value tolerance");
+    point_values.clear();
+    for (const auto &entry : split_expressions(prm.get("Point values")))
+      {
+        const auto parts = Utilities::split_string_list(entry, ':');
+        if (parts.size() != 3 ||
+            (parts[1] != "x" && parts[1] != "y" && parts[1] != "z"))
+          throw InputError("subsection 'Reference solution', parameter "
+                           "'Point values': cannot read '" +
+                           entry +
+                           "'. Write 'x, y[, z] : component : value' with "
+                           "component x, y or z.");
+        PointValue v;
+        v.point     = to_doubles(parts[0]);
+        v.component = component_index(parts[1]);
+        v.value     = Utilities::string_to_double(parts[2]);
+        point_values.push_back(v);
+      }
     prm.leave_subsection();
   }
 
@@ -662,6 +975,7 @@ namespace Signorini
       }
     prm.leave_subsection();
     BoundaryConditionParameters::declare_parameters(prm, counts);
+    ContactParameters::declare_parameters(prm, counts);
     LoadSteppingParameters::declare_parameters(prm);
     NewtonParameters::declare_parameters(prm);
     LinearSolverParameters::declare_parameters(prm);
@@ -688,6 +1002,7 @@ namespace Signorini
       }
     prm.leave_subsection();
     boundary_conditions.parse_parameters(prm, counts);
+    contact.parse_parameters(prm, counts);
     load_stepping.parse_parameters(prm);
     newton.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
@@ -761,6 +1076,74 @@ namespace Signorini
         throw InputError("subsection 'Geometry/Body " + std::to_string(b + 1) +
                          "', parameter 'Mesh file': Shape = file needs a mesh "
                          "file name.");
+
+    // Contact.
+    const auto &c = contact;
+    if (c.rule == IntegrationRule::newton_cotes && c.order != 1 &&
+        c.order != 2 && c.order != 4 && c.order != 6)
+      throw InputError("subsection 'Contact', parameter 'Integration order': "
+                       "the newton-cotes rule exists for orders 1, 2, 4 and 6 "
+                       "(trapezoid, Simpson, Milne, Weddle), not " +
+                       std::to_string(c.order) + ".");
+    if (c.normal != NormalChoice::master && c.rule != IntegrationRule::nodal)
+      throw InputError("subsection 'Contact', parameter 'Normal': the slave "
+                       "and average normals are defined at nodes and need "
+                       "'Integration rule = nodal'. Set 'Normal = master' or "
+                       "'Integration rule = nodal'.");
+    if (!c.pairs.empty() && linear_solver.type != LinearSolverType::direct)
+      throw InputError("subsection 'Linear solver', parameter 'Type': contact "
+                       "systems (u | lambda | Lambda) are saddle-point "
+                       "systems; set 'Type = direct' when 'Contact/Number of "
+                       "contact pairs' > 0.");
+    for (unsigned int k = 0; k < c.pairs.size(); ++k)
+      {
+        const auto &      p = c.pairs[k];
+        const std::string where =
+          "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
+        if (p.slave_ids.empty())
+          throw InputError(where + ", parameter 'Slave boundary id': give "
+                                   "the boundary id(s) of the slave surface.");
+        if (p.master == MasterType::body)
+          {
+            if (p.master_ids.empty())
+              throw InputError(where + ", parameter 'Master boundary id': "
+                                       "Master = body needs the boundary "
+                                       "id(s) of the master surface.");
+            for (const auto id : p.master_ids)
+              if (std::count(p.slave_ids.begin(), p.slave_ids.end(), id))
+                throw InputError(
+                  where + ": boundary id " + std::to_string(id) +
+                  " is both slave and master. The slave and master surfaces "
+                  "must be different boundaries (of different bodies).");
+          }
+        else
+          {
+            if (p.obstacle_point.size() < dim)
+              throw InputError(where + ", parameter 'Obstacle point': give " +
+                               std::to_string(dim) + " coordinates.");
+            if (p.master == MasterType::plane &&
+                (p.obstacle_normal.size() < dim ||
+                 std::sqrt(std::inner_product(p.obstacle_normal.begin(),
+                                              p.obstacle_normal.begin() + dim,
+                                              p.obstacle_normal.begin(),
+                                              0.)) == 0.))
+              throw InputError(where + ", parameter 'Obstacle normal': give " +
+                               std::to_string(dim) +
+                               " coordinates of a nonzero vector.");
+            if (p.master == MasterType::cylinder && dim == 3 &&
+                (p.obstacle_axis.size() < 3 ||
+                 std::sqrt(std::inner_product(p.obstacle_axis.begin(),
+                                              p.obstacle_axis.begin() + 3,
+                                              p.obstacle_axis.begin(),
+                                              0.)) == 0.))
+              throw InputError(where + ", parameter 'Obstacle axis': give 3 "
+                                       "coordinates of a nonzero vector.");
+            if (p.obstacle_motion.size() < dim)
+              throw InputError(where + ", parameter 'Obstacle motion': give " +
+                               std::to_string(dim) +
+                               " expressions separated by ';'.");
+          }
+      }
   }
 
 
@@ -820,7 +1203,7 @@ namespace Signorini
           message.find("not been declared") != std::string::npos)
         hint = " Check the spelling against 'signorini --print-parameters'; "
                "numbered subsections (Body k, Material k, Dirichlet k, "
-               "Neumann k) must not exceed their 'Number of ...' entry.";
+               "Neumann k, Pair k) must not exceed their 'Number of ...' entry.";
       else if (message.find("does not match the given pattern") !=
                std::string::npos)
         hint = message.find("named Dimension") != std::string::npos ?
@@ -853,6 +1236,11 @@ namespace Signorini
                           "0",
                           Patterns::Integer(0, 64));
         pre.leave_subsection();
+        pre.enter_subsection("Contact");
+        pre.declare_entry("Number of contact pairs",
+                          "0",
+                          Patterns::Integer(0, 64));
+        pre.leave_subsection();
         try
           {
             pre.parse_input_from_string(text, "", true);
@@ -870,6 +1258,9 @@ namespace Signorini
         pre.enter_subsection("Boundary conditions");
         counts.n_dirichlet = pre.get_integer("Number of Dirichlet conditions");
         counts.n_neumann   = pre.get_integer("Number of Neumann conditions");
+        pre.leave_subsection();
+        pre.enter_subsection("Contact");
+        counts.n_pairs = pre.get_integer("Number of contact pairs");
         pre.leave_subsection();
       }
 

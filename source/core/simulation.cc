@@ -4,7 +4,9 @@
 #include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
@@ -19,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace Signorini
@@ -116,6 +119,8 @@ namespace Signorini
                                bc.body_force.begin() + dim),
       bc.constants,
       "subsection 'Boundary conditions', parameter 'Body force'");
+    contact = std::make_unique<Contact::ContactProblem<dim>>(
+      parameters, fe, dof_handler, materials, mpi_communicator);
   }
 
 
@@ -191,26 +196,67 @@ namespace Signorini
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
 
     solution.reinit(locally_owned, locally_relevant, mpi_communicator);
-    newton_rhs.reinit(locally_owned, mpi_communicator);
     internal_force.reinit(locally_owned, mpi_communicator);
     external_force.reinit(locally_owned, mpi_communicator);
 
-    // The sparsity pattern holds the Dirichlet couplings too (constraints
-    // are applied with keep_constrained_dofs = false at assembly).
+    // The displacement constraints first: the contact set-up needs them to
+    // exclude over-constrained slave nodes.
+    owned_system    = locally_owned;
+    relevant_system = locally_relevant;
     make_constraints(0.);
-    TrilinosWrappers::SparsityPattern sp(locally_owned,
-                                         locally_owned,
-                                         locally_relevant,
+    if (contact->active())
+      {
+        contact->setup(constraints_update,
+                       locally_owned,
+                       locally_relevant,
+                       pcout);
+        const auto n_system = contact->n_system();
+        owned_system        = IndexSet(n_system);
+        owned_system.add_indices(locally_owned);
+        owned_system.add_indices(contact->locally_owned_multipliers());
+        owned_system.compress();
+        relevant_system = IndexSet(n_system);
+        relevant_system.add_indices(locally_relevant);
+        relevant_system.add_indices(contact->extra_relevant());
+        relevant_system.add_indices(owned_system);
+        relevant_system.compress();
+        make_constraints(0.);
+      }
+    state.reinit(owned_system, relevant_system, mpi_communicator);
+    state_step_start.reinit(owned_system, relevant_system, mpi_communicator);
+    newton_rhs.reinit(owned_system, relevant_system, mpi_communicator, true);
+    contact_force.reinit(locally_owned,
+                         contact->active() ? relevant_system : locally_relevant,
+                         mpi_communicator,
+                         true);
+    if (!contact->active())
+      make_sparsity();
+    linear_solver->set_null_space(dof_handler, locally_owned);
+  }
+
+
+  // Bulk couplings, plus the contact couplings of the current pairing; the
+  // pattern holds the Dirichlet couplings too (constraints are applied with
+  // keep_constrained_dofs = false at assembly).
+  template <int dim>
+  void
+  Simulation<dim>::make_sparsity()
+  {
+    TrilinosWrappers::SparsityPattern sp(owned_system,
+                                         owned_system,
+                                         relevant_system,
                                          mpi_communicator);
-    DoFTools::make_sparsity_pattern(dof_handler,
-                                    sp,
-                                    constraints_update,
-                                    false,
-                                    Utilities::MPI::this_mpi_process(
-                                      mpi_communicator));
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          constraints_update.add_entries_local_to_global(dofs, sp, false);
+        }
+    if (contact->active())
+      contact->add_sparsity(sp, constraints_update);
     sp.compress();
     system_matrix.reinit(sp);
-    linear_solver->set_null_space(dof_handler, locally_owned);
   }
 
 
@@ -220,10 +266,10 @@ namespace Signorini
   {
     const auto &bc = parameters.boundary_conditions;
     constraints_values.clear();
-    constraints_values.reinit(locally_relevant);
+    constraints_values.reinit(relevant_system);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints_values);
     constraints_update.clear();
-    constraints_update.reinit(locally_relevant);
+    constraints_update.reinit(relevant_system);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints_update);
     dirichlet_dofs.assign(bc.dirichlet.size(), {});
 
@@ -305,6 +351,11 @@ namespace Signorini
                                             dirichlet_dofs[k].end()),
                                 dirichlet_dofs[k].end());
       }
+    if (contact->active() && owned_system.size() > dof_handler.n_dofs())
+      {
+        contact->add_constraint_lines(constraints_values);
+        contact->add_constraint_lines(constraints_update);
+      }
     constraints_values.close();
     constraints_update.close();
   }
@@ -316,7 +367,7 @@ namespace Signorini
   void
   Simulation<dim>::assemble(const bool with_matrix)
   {
-    TimerOutput::Scope t(timer, "bulk assembly");
+    timer.enter_subsection("bulk assembly");
     if (with_matrix)
       system_matrix = 0;
     newton_rhs     = 0;
@@ -421,40 +472,146 @@ namespace Signorini
           internal_force.add(dofs, cell_fint);
           external_force.add(dofs, cell_fext);
         }
+    timer.leave_subsection("bulk assembly");
+    contact_force = 0;
+    if (contact->active())
+      {
+        TimerOutput::Scope tc(timer, "contact assembly");
+        contact_statistics =
+          contact->assemble(state,
+                            state_step_start,
+                            constraints_update,
+                            with_matrix ? &system_matrix : nullptr,
+                            newton_rhs,
+                            contact_force);
+      }
     if (with_matrix)
       system_matrix.compress(VectorOperation::add);
     newton_rhs.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
     external_force.compress(VectorOperation::add);
+    contact_force.compress(VectorOperation::add);
   }
 
 
   template <int dim>
+  void
+  Simulation<dim>::update_solution()
+  {
+    TrilinosWrappers::MPI::Vector owned(locally_owned, mpi_communicator);
+    for (const auto i : locally_owned)
+      owned[i] = state[i];
+    owned.compress(VectorOperation::insert);
+    solution = owned;
+  }
+
+
+  // One load step (formulation.md 7): Dirichlet values of the new time on
+  // the iterate, then the geometric loop (pairing, Newton) with contact, or
+  // Newton alone without.
+  template <int dim>
   bool
-  Simulation<dim>::solve_load_step(const double time, unsigned int &iterations)
+  Simulation<dim>::solve_load_step(const double  time,
+                                   const double  step_start_time,
+                                   unsigned int &iterations)
   {
     make_constraints(time);
     for (auto &f : neumann_functions)
       f->set_time(time);
     body_force->set_time(time);
-
-    // Impose the Dirichlet values of this time on the iterate.
+    state_step_start = state;
     {
-      TrilinosWrappers::MPI::Vector owned(locally_owned, mpi_communicator);
-      owned = solution;
+      TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
+      owned = state;
       constraints_values.distribute(owned);
-      solution = owned;
+      state = owned;
     }
+    update_solution();
+    iterations = 0;
+    if (!contact->active())
+      return newton(iterations);
 
+    const auto &c       = parameters.contact;
+    const bool  verbose = parameters.output.verbosity != Verbosity::quiet;
+    for (unsigned int g = 1; g <= c.max_geometric_iterations; ++g)
+      {
+        {
+          TimerOutput::Scope t(timer, "pairing");
+          contact->pair(state, time, step_start_time);
+          if (first_pairing)
+            {
+              TrilinosWrappers::MPI::Vector owned(owned_system,
+                                                  mpi_communicator);
+              owned = state;
+              contact->set_initial_multipliers(state, owned);
+              state         = owned;
+              first_pairing = false;
+            }
+          make_sparsity();
+        }
+        const TrilinosWrappers::MPI::Vector at_pairing = state;
+        unsigned int                        its        = 0;
+        const bool                          ok         = newton(its);
+        iterations += its;
+        if (!ok)
+          return false;
+        // Largest displacement change since the pairing against the step's
+        // increment (code_aster's criterion, formulation.md 7.3).
+        double change = 0, increment = 0;
+        for (const auto i : locally_owned)
+          {
+            change    = std::max(change, std::abs(state[i] - at_pairing[i]));
+            increment = std::max(increment,
+                                 std::abs(state[i] - state_step_start[i]));
+          }
+        change    = Utilities::MPI::max(change, mpi_communicator);
+        increment = Utilities::MPI::max(increment, mpi_communicator);
+        const double ratio = increment > 0 ? change / increment : 0.;
+        if (verbose)
+          pcout << "    geometric iteration " << g
+                << ": change/increment = " << std::scientific
+                << std::setprecision(2) << ratio << std::defaultfloat
+                << std::endl;
+        if (ratio <= c.geometric_tolerance)
+          return true;
+      }
+    pcout << "  geometric loop not converged after "
+          << c.max_geometric_iterations << " iterations" << std::endl;
+    return false;
+  }
+
+
+  // Generalised Newton (formulation.md 7.2): statuses are recomputed at
+  // every iterate; converged when every block residual is small AND no
+  // status changed since the previous iterate.
+  template <int dim>
+  bool
+  Simulation<dim>::newton(unsigned int &iterations)
+  {
     const bool verbose = parameters.output.verbosity == Verbosity::verbose;
-    double     residual_0 = 0;
+    const bool show_contact =
+      contact->active() && parameters.output.verbosity != Verbosity::quiet;
+    const types::global_dof_index n_u = dof_handler.n_dofs();
+    const types::global_dof_index n_l =
+      contact->active() ? contact->n_lambda_dofs() : 0;
+    double residual_0 = 0;
     for (iterations = 0; iterations <= parameters.newton.max_iterations;
          ++iterations)
       {
         // Residual first; the matrix only if a solve follows, so the
         // converged check does not pay for a matrix assembly.
+        if (contact->active())
+          contact->update_coefficients(state);
         assemble(false);
-        const double residual = newton_rhs.l2_norm();
+        double block[3] = {0, 0, 0};
+        for (const auto i : owned_system)
+          block[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)] +=
+            newton_rhs[i] * newton_rhs[i];
+        for (auto &b : block)
+          b = std::sqrt(Utilities::MPI::sum(b, mpi_communicator));
+        const double residual =
+          std::sqrt(block[0] * block[0] + block[1] * block[1] +
+                    block[2] * block[2]);
         if (iterations == 0)
           {
             residual_0  = residual;
@@ -462,15 +619,38 @@ namespace Signorini
                                     external_force.l2_norm(),
                                     residual_0});
           }
-        const bool converged =
-          residual <= parameters.newton.absolute_tolerance ||
-          residual <= parameters.newton.relative_tolerance * force_scale;
-        if (verbose)
+        const auto small = [&](const double r) {
+          return r <= parameters.newton.absolute_tolerance ||
+                 r <= parameters.newton.relative_tolerance * force_scale;
+        };
+        const bool statuses_settled =
+          !contact->active() || contact_statistics.n_changed == 0;
+        const bool converged = small(block[0]) && small(block[1]) &&
+                               small(block[2]) && statuses_settled;
+        const auto relative = [&](const double r) {
+          return force_scale > 0 ? r / force_scale : 0.;
+        };
+        if (show_contact)
+          {
+            const auto &st = contact_statistics;
+            pcout << "    Newton " << std::setw(2) << iterations
+                  << ": |R_u| " << std::scientific << std::setprecision(2)
+                  << relative(block[0]) << " |R_lambda| " << relative(block[1]);
+            if (contact->n_friction_dofs() > 0)
+              pcout << " |R_Lambda| " << relative(block[2]);
+            pcout << std::defaultfloat << "  contact " << st.n_contact;
+            if (contact->n_friction_dofs() > 0)
+              pcout << " (stick " << st.n_stick << ", slip " << st.n_slip
+                    << ")";
+            pcout << " free " << st.n_points - st.n_contact << " changed "
+                  << st.n_changed << (converged ? "  converged" : "")
+                  << std::endl;
+          }
+        else if (verbose)
           pcout << "    Newton " << std::setw(2) << iterations
                 << ": |R|/|F| = " << std::scientific << std::setprecision(2)
-                << (force_scale > 0 ? residual / force_scale : 0.)
-                << std::defaultfloat << (converged ? "  converged" : "")
-                << std::endl;
+                << relative(residual) << std::defaultfloat
+                << (converged ? "  converged" : "") << std::endl;
         if (!std::isfinite(residual))
           return false;
         if (converged)
@@ -480,13 +660,14 @@ namespace Signorini
 
         assemble(true);
         TimerOutput::Scope t(timer, "linear solve");
-        TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
+        TrilinosWrappers::MPI::Vector update(owned_system, mpi_communicator);
         linear_solver->solve(system_matrix, update, newton_rhs);
         constraints_update.distribute(update);
-        TrilinosWrappers::MPI::Vector owned(locally_owned, mpi_communicator);
-        owned = solution;
+        TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
+        owned = state;
         owned += update;
-        solution = owned;
+        state = owned;
+        update_solution();
       }
     return false;
   }
@@ -503,7 +684,7 @@ namespace Signorini
       {
         for (const auto &[dof, component] : dirichlet_dofs[k])
           reactions[k][component] +=
-            internal_force[dof] - external_force[dof];
+            internal_force[dof] - external_force[dof] + contact_force[dof];
         // Round-off (relative to the force level) is printed as zero so the
         // output does not depend on the number of MPI ranks.
         for (unsigned int d = 0; d < dim; ++d)
@@ -597,6 +778,178 @@ namespace Signorini
   }
 
 
+  // Displacement component at a point: the first locally owned cell that
+  // contains it (lowest rank wins).
+  template <int dim>
+  double
+  Simulation<dim>::point_value(const Point<dim> &p,
+                               const unsigned int component) const
+  {
+    const MappingQ1<dim> mapping;
+    double               value = 0;
+    bool                 found = false;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && !found)
+        {
+          const BoundingBox<dim> box(
+            std::make_pair(cell->vertex(0), cell->vertex(0)));
+          bool near = true;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              double lo = cell->vertex(0)[d], hi = lo;
+              for (const unsigned int v : cell->vertex_indices())
+                {
+                  lo = std::min(lo, cell->vertex(v)[d]);
+                  hi = std::max(hi, cell->vertex(v)[d]);
+                }
+              const double tol = 1e-10 * (hi - lo);
+              near = near && p[d] >= lo - tol && p[d] <= hi + tol;
+            }
+          if (!near)
+            continue;
+          Point<dim> unit;
+          try
+            {
+              unit = mapping.transform_real_to_unit_cell(cell, p);
+            }
+          catch (...)
+            {
+              continue;
+            }
+          if (!GeometryInfo<dim>::is_inside_unit_cell(unit, 1e-8))
+            continue;
+          const Quadrature<dim> q(GeometryInfo<dim>::project_to_unit_cell(unit));
+          FEValues<dim>     fv(mapping, fe, q, update_values);
+          fv.reinit(cell);
+          std::vector<Vector<double>> v(1, Vector<double>(dim));
+          fv.get_function_values(solution, v);
+          value = v[0][component];
+          found = true;
+        }
+    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int owner = Utilities::MPI::min(
+      found ? rank : std::numeric_limits<unsigned int>::max(),
+      mpi_communicator);
+    if (owner == std::numeric_limits<unsigned int>::max())
+      throw InputError("subsection 'Reference solution', parameter 'Point "
+                       "values': the point lies in no cell of the mesh. Give "
+                       "a point of a body.");
+    return Utilities::MPI::sum(rank == owner ? value : 0., mpi_communicator);
+  }
+
+
+  // Contact checks of the Reference solution subsection: p0, half-width,
+  // pressure profile (relative L2 over the contact points), point values.
+  template <int dim>
+  void
+  Simulation<dim>::check_contact_references()
+  {
+    const auto &ref = parameters.reference;
+    contact_checks.clear();
+    contact_checks_pass = true;
+    const auto line = [&](const std::string &what,
+                          const double       computed,
+                          const double       reference,
+                          const double       error,
+                          const double       tolerance,
+                          const char *       error_kind) {
+      const bool pass = error <= tolerance;
+      contact_checks_pass &= pass;
+      contact_checks.push_back(what + " = " + format(computed, 4) +
+                               " (reference " + format(reference, 4) + ") " +
+                               error_kind + " " + format(error, 2) +
+                               " (tolerance " + format(tolerance, 1) + "): " +
+                               (pass ? "PASS" : "FAIL"));
+    };
+    const bool needs_points = ref.max_pressure > 0 || ref.half_width > 0 ||
+                              !ref.contact_pressure.empty();
+    const auto records =
+      needs_points ? contact->gather_points() :
+                     std::vector<typename Contact::ContactProblem<
+                       dim>::PointRecord>();
+    if (ref.max_pressure > 0)
+      {
+        double p0 = 0;
+        for (const auto &r : records)
+          p0 = std::max(p0, r.p);
+        line("max contact pressure p0",
+             p0,
+             ref.max_pressure,
+             std::abs(p0 - ref.max_pressure) / ref.max_pressure,
+             ref.pressure_tolerance,
+             "relative error");
+      }
+    if (ref.half_width > 0)
+      {
+        Point<dim> centre;
+        for (unsigned int d = 0; d < dim && d < ref.contact_centre.size(); ++d)
+          centre[d] = ref.contact_centre[d];
+        double closed = 0;
+        for (const auto &r : records)
+          if (r.status != Contact::PointStatus::free)
+            closed = std::max(closed, r.x.distance(centre));
+        double open = std::numeric_limits<double>::max();
+        for (const auto &r : records)
+          if (r.status == Contact::PointStatus::free &&
+              r.x.distance(centre) > closed)
+            open = std::min(open, r.x.distance(centre));
+        const double a =
+          open < std::numeric_limits<double>::max() ? 0.5 * (closed + open) :
+                                                      closed;
+        line("contact half-width a",
+             a,
+             ref.half_width,
+             std::abs(a - ref.half_width),
+             ref.half_width_tolerance,
+             "absolute error");
+      }
+    if (!ref.contact_pressure.empty())
+      {
+        auto exact = make_function<dim>({ref.contact_pressure},
+                                        parameters.boundary_conditions.constants,
+                                        "subsection 'Reference solution', "
+                                        "parameter 'Contact pressure'");
+        double e2 = 0, n2 = 0, p_ref_max = 0;
+        for (const auto &r : records)
+          {
+            const double pe = exact->value(r.x);
+            e2 += r.weight * std::pow(r.p - pe, 2);
+            n2 += r.weight * pe * pe;
+            p_ref_max = std::max(p_ref_max, pe);
+          }
+        const double e    = n2 > 0 ? std::sqrt(e2 / n2) : std::sqrt(e2);
+        const bool   pass = e <= ref.pressure_l2_tolerance;
+        contact_checks_pass &= pass;
+        contact_checks.push_back("contact pressure relative L2 error = " +
+                                 format(e, 2) + " (tolerance " +
+                                 format(ref.pressure_l2_tolerance, 1) +
+                                 "): " + (pass ? "PASS" : "FAIL"));
+      }
+    const char *axis[] = {"x", "y", "z"};
+    for (const auto &pv : ref.point_values)
+      {
+        const Point<dim> p = to_point<dim>(
+          std::vector<double>(pv.point.begin(),
+                              pv.point.begin() +
+                                std::min<std::size_t>(dim, pv.point.size())),
+          "subsection 'Reference solution', parameter 'Point values'");
+        const double value = point_value(p, pv.component);
+        std::ostringstream what;
+        what << "u_" << axis[pv.component] << "(";
+        for (unsigned int d = 0; d < dim; ++d)
+          what << (d ? ", " : "") << p[d];
+        what << ")";
+        line(what.str(),
+             value,
+             pv.value,
+             std::abs(value - pv.value) /
+               std::max(std::abs(pv.value), 1e-300),
+             ref.point_value_tolerance,
+             "relative error");
+      }
+  }
+
+
   template <int dim>
   void
   Simulation<dim>::output_results(const unsigned int step, const double time)
@@ -604,6 +957,7 @@ namespace Signorini
     if (!parameters.output.write_vtu)
       return;
     TimerOutput::Scope t(timer, "output");
+    DoFHandler<dim>    scalar_dofs(triangulation); // contact fields
     DataOut<dim>       data_out;
     data_out.attach_dof_handler(dof_handler);
     std::vector<DataComponentInterpretation::DataComponentInterpretation>
@@ -625,6 +979,15 @@ namespace Signorini
         }
     data_out.add_data_vector(material_id, "material_id");
     data_out.add_data_vector(subdomain, "subdomain");
+    // Contact fields at the slave nodes (zero elsewhere).
+    std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>> fields;
+    if (contact->active())
+      {
+        scalar_dofs.distribute_dofs(fe.base_element(0));
+        fields = contact->nodal_fields(scalar_dofs);
+        for (const auto &[name, vector] : fields)
+          data_out.add_data_vector(scalar_dofs, vector, name);
+      }
     data_out.build_patches(fe.degree);
     const std::string name = data_out.write_vtu_with_pvtu_record(
       parameters.output.directory + "/", "solution", step, mpi_communicator, 4);
@@ -679,6 +1042,29 @@ namespace Signorini
     };
     report("displacement L2 relative error", errors.displacement_l2_relative);
     report("stress max relative error", errors.stress_max_relative);
+    if (contact->active())
+      {
+        const auto summary = contact->summary();
+        for (unsigned int p = 0; p < summary.size(); ++p)
+          {
+            const auto &s = summary[p];
+            pcout << "  contact pair " << p + 1 << ": " << s.n_contact
+                  << " of " << s.n_points << " points closed";
+            if (parameters.contact.pairs[p].friction > 0)
+              pcout << " (stick " << s.n_stick << ", slip " << s.n_slip
+                    << ")";
+            pcout << ", force on slave = (";
+            for (unsigned int d = 0; d < dim; ++d)
+              pcout << (d ? ", " : "")
+                    << format(std::abs(s.force[d]) < 1e-10 * force_scale ?
+                                0. :
+                                s.force[d],
+                              4);
+            pcout << "), max p = " << format(s.p_max, 4) << "\n";
+          }
+        for (const auto &line : contact_checks)
+          pcout << "  reference check: " << line << "\n";
+      }
     pcout << std::flush;
 
     if (parameters.output.write_csv &&
@@ -710,6 +1096,11 @@ namespace Signorini
           << triangulation.n_global_active_cells() << " cells, "
           << dof_handler.n_dofs() << " displacement DoFs, "
           << parameters.geometry.bodies.size() << " body(ies)" << std::endl;
+    if (contact->active())
+      pcout << "DoFs per block: u " << dof_handler.n_dofs() << ", lambda "
+            << contact->n_lambda_dofs() << ", Lambda "
+            << contact->n_friction_dofs() << " (total "
+            << contact->n_system() << ")" << std::endl;
 
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
@@ -721,7 +1112,7 @@ namespace Signorini
 
     const auto &times = parameters.load_stepping.step_times;
     double      t_done = 0;
-    TrilinosWrappers::MPI::Vector last_converged = solution;
+    TrilinosWrappers::MPI::Vector last_converged = state;
     for (unsigned int step = 1; step <= times.size(); ++step)
       {
         pcout << "Load step " << step << " of " << times.size()
@@ -732,16 +1123,17 @@ namespace Signorini
         while (t_done < times[step - 1])
           {
             unsigned int iterations = 0;
-            if (solve_load_step(t_target, iterations))
+            if (solve_load_step(t_target, t_done, iterations))
               {
                 total_iterations += iterations;
-                last_converged = solution;
+                last_converged = state;
                 t_done         = t_target;
                 t_target       = times[step - 1];
               }
             else
               {
-                solution = last_converged;
+                state = last_converged;
+                update_solution();
                 if (++cuts > parameters.load_stepping.max_cuts)
                   throw RunError(
                     "load step " + std::to_string(step) + " did not converge "
@@ -759,8 +1151,17 @@ namespace Signorini
           }
         compute_reactions();
         compute_reference_errors(times[step - 1]);
+        if (contact->active())
+          check_contact_references();
         write_statistics(step, times[step - 1], total_iterations);
         output_results(step, times[step - 1]);
+        if (contact->active() && parameters.output.write_csv)
+          {
+            std::ostringstream name;
+            name << parameters.output.directory << "/contact_"
+                 << std::setw(4) << std::setfill('0') << step << ".csv";
+            contact->write_csv(name.str());
+          }
       }
     if (parameters.output.timing_summary)
       timer.print_wall_time_statistics(mpi_communicator);

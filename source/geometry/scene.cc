@@ -1,3 +1,4 @@
+#include <deal.II/base/function_parser.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
@@ -77,7 +78,7 @@ namespace Signorini
           GridGenerator::half_hyper_ball(tria, Point<dim>(), radius);
         else
           GridGenerator::quarter_hyper_ball(tria, Point<dim>(), radius);
-        // 0 = curved, 1 = flat; hyper_ball may colour nothing else.
+        // 0 = curved; hyper_ball may colour nothing else.
         for (const auto &face : tria.active_face_iterators())
           if (face->at_boundary() && face->boundary_id() != 0)
             face->set_boundary_id(1);
@@ -85,6 +86,29 @@ namespace Signorini
           GridTools::rotate(-numbers::PI / 2, tria);
         else
           GridTools::rotate(Tensor<1, 3>({0., 0., 1.}), -numbers::PI / 2, tria);
+        // Flat faces after the rotation: 1 = the top (y = centre), 2 = the
+        // symmetry plane x = centre, 3 = the symmetry plane z = centre.
+        const double tol = 1e-10 * radius;
+        for (const auto &face : tria.active_face_iterators())
+          if (face->at_boundary() && face->boundary_id() != 0)
+            {
+              const Point<dim> c = face->center();
+              if (std::abs(c[1]) < tol)
+                face->set_boundary_id(1);
+              else if (std::abs(c[0]) < tol)
+                face->set_boundary_id(2);
+              else if (dim == 3 && std::abs(c[dim - 1]) < tol)
+                face->set_boundary_id(3);
+            }
+      }
+
+      // Number of face groups of a ball segment (see make_ball_segment).
+      unsigned int
+      n_segment_faces(const Segment segment, const unsigned int dim)
+      {
+        return segment == Segment::full ? 1 :
+               segment == Segment::half ? 2 :
+                                          (dim == 2 ? 3 : 4);
       }
 
       struct CurvedBody
@@ -133,13 +157,16 @@ namespace Signorini
                   {
                     make_ball_segment(tria, body.segment, body.radius);
                     GridTools::shift(centre, tria);
-                    assign_boundary_ids(tria, body, b, 2);
+                    assign_boundary_ids(tria,
+                                        body,
+                                        b,
+                                        n_segment_faces(body.segment, dim));
                   }
                 else
                   {
                     Triangulation<2> disc;
                     make_ball_segment(disc, body.segment, body.radius);
-                    // Side walls keep 0/1; put the end caps on 2 and 3.
+                    // Side walls keep 0/1/2; put the end caps on 3 and 4.
                     const unsigned int n_layers =
                       body.subdivisions.empty() ? 1 : body.subdivisions[0];
                     Triangulation<3> cylinder;
@@ -152,17 +179,17 @@ namespace Signorini
                         {
                           const double z = face->center()[2];
                           if (std::abs(z) < 1e-12 * body.length)
-                            face->set_boundary_id(2);
+                            face->set_boundary_id(3);
                           else if (std::abs(z - body.length) <
                                    1e-12 * body.length)
-                            face->set_boundary_id(3);
+                            face->set_boundary_id(4);
                         }
                     if constexpr (dim == 3)
                       {
                         tria.copy_triangulation(cylinder);
                         GridTools::shift(centre, tria);
                       }
-                    assign_boundary_ids(tria, body, b, 4);
+                    assign_boundary_ids(tria, body, b, 5);
                   }
                 break;
               }
@@ -305,6 +332,40 @@ namespace Signorini
           triangulation.set_manifold(id, transfinite);
         }
       triangulation.refine_global(parameters.geometry.global_refinements);
+
+      // Local refinement where the user's region function is positive.
+      const auto &geometry = parameters.geometry;
+      if (geometry.local_refinements > 0)
+        {
+          FunctionParser<dim> region(1);
+          try
+            {
+              region.initialize(dim == 2 ? "x,y" : "x,y,z",
+                                geometry.refinement_region,
+                                parameters.boundary_conditions.constants);
+              region.value(Point<dim>());
+            }
+          catch (const ExceptionBase &e)
+            {
+              throw InputError(
+                "subsection 'Geometry', parameter 'Refinement region': "
+                "cannot parse '" +
+                geometry.refinement_region +
+                "'. Give an expression in x, y" +
+                std::string(dim == 3 ? ", z" : "") +
+                " (and 'Function constants'), positive where cells are to be "
+                "refined.");
+            }
+          for (unsigned int cycle = 0; cycle < geometry.local_refinements;
+               ++cycle)
+            {
+              for (const auto &cell : triangulation.active_cell_iterators())
+                if (cell->is_locally_owned() &&
+                    region.value(cell->center()) > 0)
+                  cell->set_refine_flag();
+              triangulation.execute_coarsening_and_refinement();
+            }
+        }
     }
 
 

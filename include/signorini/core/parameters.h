@@ -43,6 +43,7 @@ namespace Signorini
     unsigned int n_materials = 1;
     unsigned int n_dirichlet = 1;
     unsigned int n_neumann   = 0;
+    unsigned int n_pairs     = 0;
   };
 
   enum class BodyShape
@@ -83,6 +84,8 @@ namespace Signorini
   struct GeometryParameters
   {
     unsigned int                global_refinements;
+    unsigned int                local_refinements;
+    std::string                 refinement_region; // f(x, y, z) > 0: refine
     std::vector<BodyParameters> bodies;
 
     static void declare_parameters(ParameterHandler &prm, const Counts &counts);
@@ -201,9 +204,90 @@ namespace Signorini
     std::vector<std::string> displacement; // empty: no reference
     std::vector<std::string> stress;       // dim*dim expressions, row-major
     double                   tolerance;
+    // Contact checks (0 / empty: not checked).
+    double              max_pressure, pressure_tolerance;
+    double              half_width, half_width_tolerance;
+    std::vector<double> contact_centre;
+    std::string         contact_pressure;
+    double              pressure_l2_tolerance;
+    struct PointValue
+    {
+      std::vector<double> point;
+      unsigned int        component;
+      double              value;
+    };
+    std::vector<PointValue> point_values;
+    double                  point_value_tolerance;
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Kind of master surface of a contact pair. */
+  enum class MasterType
+  {
+    body,     // boundary faces of another meshed body
+    plane,    // rigid analytic half-space
+    sphere,   // rigid disc (2D) or ball (3D)
+    cylinder  // rigid cylinder (3D; a disc in 2D)
+  };
+
+  /** One contact pair (subsection Contact/Pair k), formulation.md 2. */
+  struct ContactPairParameters
+  {
+    std::vector<unsigned int> slave_ids;
+    MasterType                master;
+    std::vector<unsigned int> master_ids;
+    std::vector<double>       obstacle_point, obstacle_normal, obstacle_axis;
+    double                    obstacle_radius;
+    std::vector<std::string>  obstacle_motion; // dim expressions of t
+    double                    friction;
+    double                    rho_n_factor, rho_t_factor;
+    double                    gap_offset;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Integration rule on the slave surface (formulation.md 6). */
+  enum class IntegrationRule
+  {
+    nodal,
+    gauss,
+    simpson,
+    newton_cotes
+  };
+
+  enum class NormalChoice
+  {
+    master,
+    slave,
+    average
+  };
+
+  enum class InitialStatus
+  {
+    open,
+    penetrating,
+    closed
+  };
+
+  struct ContactParameters
+  {
+    std::vector<ContactPairParameters> pairs;
+    IntegrationRule                    rule;
+    unsigned int                       order;
+    NormalChoice                       normal;
+    InitialStatus                      initial_status;
+    bool                               frozen_threshold;
+    bool                               threshold_coupling;
+    bool                               penalty;
+    double                             projection_tolerance;
+    double                             geometric_tolerance;
+    unsigned int                       max_geometric_iterations;
+
+    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
   };
 
   struct Parameters
@@ -213,6 +297,7 @@ namespace Signorini
     GeometryParameters          geometry;
     std::vector<MaterialParameters> materials;
     BoundaryConditionParameters boundary_conditions;
+    ContactParameters           contact;
     LoadSteppingParameters      load_stepping;
     NewtonParameters            newton;
     LinearSolverParameters      linear_solver;

@@ -12,6 +12,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/contact/contact_problem.h>
 #include <signorini/core/parameters.h>
 #include <signorini/material/elastic_material.h>
 #include <signorini/solver/linear_solver.h>
@@ -80,8 +81,20 @@ namespace Signorini
     make_constraints(const double time);
     void
     assemble(const bool with_matrix);
+    void
+    make_sparsity();
     bool
-    solve_load_step(const double time, unsigned int &n_iterations);
+    solve_load_step(const double   time,
+                    const double   step_start_time,
+                    unsigned int & n_iterations);
+    bool
+    newton(unsigned int &n_iterations);
+    void
+    update_solution(); // u part of the system state -> solution
+    double
+    point_value(const Point<dim> &p, const unsigned int component) const;
+    void
+    check_contact_references();
     void
     compute_reactions();
     void
@@ -123,6 +136,18 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector  internal_force, external_force; // no constraints
 
     std::unique_ptr<Solver::LinearSolver<dim>> linear_solver;
+
+    // Contact: unknowns u | lambda | Lambda in one index space (see
+    // Contact::ContactProblem); without contact the system is u only.
+    std::unique_ptr<Contact::ContactProblem<dim>> contact;
+    IndexSet                      owned_system, relevant_system;
+    TrilinosWrappers::MPI::Vector state;            // ghosted system iterate
+    TrilinosWrappers::MPI::Vector state_step_start; // ghosted, step start
+    TrilinosWrappers::MPI::Vector contact_force;    // on u DoFs [N]
+    Contact::ContactStatistics    contact_statistics;
+    bool                          first_pairing = true;
+    std::vector<std::string>      contact_checks; // printed after each step
+    bool                          contact_checks_pass = true;
 
     double                           force_scale = 0;
     std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition

@@ -38,6 +38,12 @@ namespace Signorini
                                 ((i == l && j == k) ? mu : 0.);
       }
 
+      double
+      youngs_modulus() const
+      {
+        return E;
+      }
+
       SymmetricTensor<2, dim>
       stress(const SymmetricTensor<2, dim> &strain) const
       {

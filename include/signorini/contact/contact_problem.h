@@ -1,0 +1,312 @@
+#ifndef signorini_contact_contact_problem_h
+#define signorini_contact_contact_problem_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <signorini/contact/contact_law.h>
+#include <signorini/contact/integration_rule.h>
+#include <signorini/contact/projection.h>
+#include <signorini/core/parameters.h>
+#include <signorini/material/elastic_material.h>
+
+#include <map>
+#include <memory>
+#include <vector>
+
+/**
+ * The contact part of the system (formulation.md sections 1-7): the slave
+ * surfaces with their multiplier unknowns, the master surfaces (meshed faces
+ * or rigid analytic obstacles), the pairing of contact points, and the
+ * assembly of the contact residual and its exact Jacobian.
+ *
+ * Unknowns are numbered in one system index space
+ *   [0, n_u)                       displacement u (the DoFHandler's numbers)
+ *   [n_u, n_u + n_l)               lambda, one per slave node
+ *   [n_u + n_l, n_system)          Lambda, dim-1 per node of a frictional pair
+ * A slave node is owned by the rank that owns its x-displacement DoF.
+ *
+ * Parallel data: every rank keeps the master faces of all ranks (positions
+ * of their nodes and DoF numbers: surface data only), the multiplier numbers
+ * of all slave nodes, and the constraint lines of the master DoFs; slave
+ * contact points are treated by the rank that owns the slave cell.
+ *
+ * Rows of the multiplier equations are scaled by rho_n (lambda rows) and
+ * rho_t (Lambda rows) of their pair, so that the residual of the active rows
+ * is a force like the displacement residual; Newton's iterates do not depend
+ * on this scaling.
+ */
+namespace Signorini
+{
+  namespace Contact
+  {
+    using namespace dealii;
+
+    /** Counts and norms of one contact residual evaluation. */
+    struct ContactStatistics
+    {
+      unsigned int n_points   = 0; // all contact points
+      unsigned int n_unpaired = 0; // no master face found
+      unsigned int n_contact  = 0; // chi_c = 1
+      unsigned int n_stick    = 0;
+      unsigned int n_slip     = 0;
+      unsigned int n_changed  = 0; // status differs from the last evaluation
+    };
+
+    template <int dim>
+    class ContactProblem
+    {
+    public:
+      ContactProblem(const Parameters &     parameters,
+                     const FESystem<dim> &  fe,
+                     const DoFHandler<dim> &dof_handler,
+                     const std::map<types::material_id,
+                                    Material::ElasticMaterial<dim>> &materials,
+                     const MPI_Comm                                 comm);
+
+      bool
+      active() const
+      {
+        return !parameters.contact.pairs.empty();
+      }
+
+      /**
+       * Finds the slave and master surfaces, numbers the multipliers and
+       * computes the coefficients. Needs the displacement constraints
+       * (hanging nodes and Dirichlet) of the locally relevant DoFs to decide
+       * which slave nodes are excluded (formulation.md 8, over-constraint).
+       */
+      void
+      setup(const AffineConstraints<double> &u_constraints,
+            const IndexSet &                 locally_owned_u,
+            const IndexSet &                 locally_relevant_u,
+            ConditionalOStream &             pcout);
+
+      types::global_dof_index
+      n_system() const
+      {
+        return n_u + n_lambda + n_friction;
+      }
+      types::global_dof_index
+      n_lambda_dofs() const
+      {
+        return n_lambda;
+      }
+      types::global_dof_index
+      n_friction_dofs() const
+      {
+        return n_friction;
+      }
+
+      /** Owned multiplier indices (system numbering). */
+      const IndexSet &
+      locally_owned_multipliers() const
+      {
+        return owned_multipliers;
+      }
+
+      /** Indices (system numbering) this rank reads or writes besides its
+       * locally relevant displacement DoFs: master face DoFs, multipliers
+       * of its slave faces and constraint parents. */
+      const IndexSet &
+      extra_relevant() const
+      {
+        return extra;
+      }
+
+      /** Adds the multiplier lines (hanging slave nodes, excluded nodes) and
+       * the master DoF lines known to other ranks to @p constraints. */
+      void
+      add_constraint_lines(AffineConstraints<double> &constraints) const;
+
+      /**
+       * Pairs every contact point (geometric iteration, formulation.md 7):
+       * closest-point projection on the master faces proposed by a
+       * bounding-box tree, or on the rigid obstacle at time @p time.
+       * @p state is the ghosted system vector. @p step_start_time is the
+       * start of the load step (rigid obstacle increments).
+       */
+      void
+      pair(const TrilinosWrappers::MPI::Vector &state,
+           const double                         time,
+           const double                         step_start_time);
+
+      /**
+       * Friction augmentation rho_t = c_t rho_n / (mu p_ref) per pair, with
+       * p_ref the RMS of the nodal pressures -lambda of the closed slave
+       * nodes in @p state (kept from the last call while no node is
+       * closed). Called before each residual evaluation, so the residual and
+       * the matrix of one Newton iteration use the same value.
+       */
+      void
+      update_coefficients(const TrilinosWrappers::MPI::Vector &state);
+
+      /** Entries of the contact blocks for the current pairing. */
+      void
+      add_sparsity(TrilinosWrappers::SparsityPattern &sparsity,
+                   const AffineConstraints<double> &  constraints) const;
+
+      /**
+       * Multipliers realising 'Initial status' = open / closed: written
+       * into the owned entries of @p state_owned after the first pairing.
+       */
+      void
+      set_initial_multipliers(const TrilinosWrappers::MPI::Vector &state,
+                              TrilinosWrappers::MPI::Vector &state_owned) const;
+
+      /**
+       * Adds -R_contact into @p rhs (and K into @p matrix if not null),
+       * evaluating the law of every contact point at @p state; @p
+       * step_start is the state at the start of the load step (slip
+       * increments). The physical contact force on the displacement DoFs is
+       * added into @p contact_force (for reactions).
+       */
+      ContactStatistics
+      assemble(const TrilinosWrappers::MPI::Vector &state,
+               const TrilinosWrappers::MPI::Vector &step_start,
+               const AffineConstraints<double> &    constraints,
+               TrilinosWrappers::SparseMatrix *     matrix,
+               TrilinosWrappers::MPI::Vector &      rhs,
+               TrilinosWrappers::MPI::Vector &      contact_force);
+
+      /** Per-pair results of the last evaluation, summed over ranks. */
+      struct PairSummary
+      {
+        Tensor<1, dim> force;      // total contact force on the slave [N]
+        double         p_max = 0;  // largest p = -lambda at a point [Pa]
+        unsigned int   n_contact = 0, n_stick = 0, n_slip = 0, n_points = 0;
+      };
+      std::vector<PairSummary>
+      summary() const;
+
+      /** Values at the contact points, gathered on every rank, sorted by
+       * (pair, reference coordinates). */
+      struct PointRecord
+      {
+        unsigned int       pair;
+        Point<dim>         x;        // reference position
+        double             weight;   // quadrature weight x reference Jacobian
+        double             p;        // -lambda
+        Tensor<1, dim - 1> traction; // mu lambda Lambda (tangent coordinates)
+        double             gap;
+        Tensor<1, dim - 1> slip;     // v in tangent coordinates
+        PointStatus        status;
+        bool               paired;
+      };
+      std::vector<PointRecord>
+      gather_points() const;
+
+      /** Writes the per-step slave-surface CSV (rank 0). */
+      void
+      write_csv(const std::string &filename) const;
+
+      /**
+       * Nodal fields on the displacement mesh for the VTU (zero away from
+       * the slave surface): p, gap, status (0 free, 1 stick, 2 slip),
+       * tangential traction and slip (dim-1 each), as weighted averages of
+       * the point values. Returns (name, vector on @p scalar_dofs) pairs.
+       */
+      std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>>
+      nodal_fields(const DoFHandler<dim> &scalar_dofs) const;
+
+      /** Number of slave nodes (= lambda DoFs). */
+      unsigned int
+      n_slave_nodes() const
+      {
+        return n_nodes_total;
+      }
+
+    private:
+      struct SlaveFace
+      {
+        typename DoFHandler<dim>::active_cell_iterator cell;
+        unsigned int                                   face;
+        unsigned int                                   pair;
+        std::vector<unsigned int>            u_local;    // cell dofs on face
+        std::vector<unsigned int>            node_local; // comp-0 cell dofs
+        std::vector<types::global_dof_index> lambda_dofs;
+        std::vector<types::global_dof_index> friction_dofs; // node-major
+        Tensor<1, dim>                       outward_normal; // at centre
+      };
+
+      struct MasterFace
+      {
+        unsigned int                         pair;
+        std::vector<Point<dim>>              X; // reference node positions
+        std::vector<types::global_dof_index> dofs; // node-major, dim each
+        Point<dim>                           inside; // reference cell centre
+      };
+
+      struct ContactPoint
+      {
+        unsigned int   face; // index into slave_faces
+        unsigned int   q;
+        bool           paired      = false;
+        int            master_face = -1; // -1: rigid or unpaired
+        std::vector<double> N_m;         // master shape values at xi
+        Tensor<1, dim> normal;
+        std::array<Tensor<1, dim>, dim - 1> tangents;
+        Point<dim>     x_m_rigid;
+        Tensor<1, dim> rigid_increment;
+        double         lambda_frozen = 0;
+        // Last evaluation:
+        PointStatus        status = PointStatus::free;
+        Point<dim>         x_ref;
+        double             weight = 0, gap = 0, lambda = 0;
+        Tensor<1, dim - 1> Lambda, slip;
+        Tensor<1, dim>     force;
+      };
+
+      struct NodeInfo
+      {
+        types::global_dof_index lambda   = numbers::invalid_dof_index;
+        types::global_dof_index friction = numbers::invalid_dof_index;
+        unsigned int            pair             = 0;
+        bool                    exclude_contact  = false;
+        bool                    exclude_friction = false;
+        std::vector<std::pair<types::global_dof_index, double>> hanging;
+      };
+
+      LawParameters
+      law_parameters(const unsigned int pair) const;
+
+      const Parameters &     parameters;
+      const DoFHandler<dim> &dof_handler;
+      const FESystem<dim> &  fe;
+      const std::map<types::material_id, Material::ElasticMaterial<dim>>
+        &      materials;
+      MPI_Comm comm;
+      FE_Q<dim - 1> face_fe; // master face parametrisation
+
+      std::unique_ptr<SlaveRule<dim>>                  rule;
+      std::vector<std::unique_ptr<RigidObstacle<dim>>> obstacles; // per pair
+      std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
+      std::vector<double> rho_n, rho_t, face_size, youngs;         // per pair
+
+      types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;
+      unsigned int            n_nodes_total = 0;
+      IndexSet                owned_multipliers, extra;
+
+      std::map<types::global_dof_index, NodeInfo> nodes; // key: x-dof
+      std::vector<SlaveFace>                      slave_faces;
+      std::vector<MasterFace>                     master_faces;
+      // Constraint lines of master DoFs, from their owners.
+      std::vector<std::pair<types::global_dof_index,
+                            std::vector<std::pair<types::global_dof_index,
+                                                  double>>>>
+        master_lines;
+
+      std::vector<ContactPoint> points;
+    };
+  } // namespace Contact
+} // namespace Signorini
+
+#endif

@@ -1,0 +1,1300 @@
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <signorini/contact/contact_problem.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    namespace
+    {
+      std::string
+      pair_name(const unsigned int p)
+      {
+        return "subsection 'Contact/Pair " + std::to_string(p + 1) + "'";
+      }
+
+      template <int dim>
+      Tensor<1, dim>
+      to_tensor(const std::vector<double> &v)
+      {
+        Tensor<1, dim> t;
+        for (unsigned int d = 0; d < dim; ++d)
+          t[d] = v[d];
+        return t;
+      }
+
+      // Adds to an entry a writable vector may not own.
+      void
+      add_entry(TrilinosWrappers::MPI::Vector &v,
+                const types::global_dof_index  i,
+                const double                   value)
+      {
+        const TrilinosWrappers::MPI::Vector::size_type index = i;
+        v.add(1, &index, &value);
+      }
+
+      // A vector that accepts additions to the entries of @p writable.
+      TrilinosWrappers::MPI::Vector
+      writable_vector(const IndexSet &owned,
+                      const IndexSet &writable,
+                      const MPI_Comm  comm)
+      {
+        TrilinosWrappers::MPI::Vector v;
+        v.reinit(owned, writable, comm, true);
+        return v;
+      }
+
+      // Exclusive prefix sum over ranks.
+      types::global_dof_index
+      offset_of(const types::global_dof_index n, const MPI_Comm comm)
+      {
+        types::global_dof_index offset = 0;
+        const auto              all    = Utilities::MPI::all_gather(comm, n);
+        for (unsigned int r = 0; r < Utilities::MPI::this_mpi_process(comm);
+             ++r)
+          offset += all[r];
+        return offset;
+      }
+    } // namespace
+
+
+    template <int dim>
+    ContactProblem<dim>::ContactProblem(
+      const Parameters &                                                parameters,
+      const FESystem<dim> &                                             fe,
+      const DoFHandler<dim> &                                           dof_handler,
+      const std::map<types::material_id, Material::ElasticMaterial<dim>> &materials,
+      const MPI_Comm                                                    comm)
+      : parameters(parameters)
+      , dof_handler(dof_handler)
+      , fe(fe)
+      , materials(materials)
+      , comm(comm)
+      , face_fe(parameters.fe_degree)
+    {
+      const auto &contact = parameters.contact;
+      rule                = std::make_unique<FixedRule<dim>>(contact.rule,
+                                                  contact.order,
+                                                  parameters.fe_degree);
+      for (unsigned int p = 0; p < contact.pairs.size(); ++p)
+        {
+          const auto &pair = contact.pairs[p];
+          if (pair.master == MasterType::body)
+            {
+              obstacles.emplace_back();
+              motions.emplace_back();
+              continue;
+            }
+          const Point<dim> point(to_tensor<dim>(pair.obstacle_point));
+          switch (pair.master)
+            {
+              case MasterType::plane:
+                obstacles.push_back(std::make_unique<RigidPlane<dim>>(
+                  point, to_tensor<dim>(pair.obstacle_normal)));
+                break;
+              case MasterType::sphere:
+                obstacles.push_back(
+                  std::make_unique<RigidSphere<dim>>(point,
+                                                     pair.obstacle_radius));
+                break;
+              default:
+                if constexpr (dim == 3)
+                  obstacles.push_back(std::make_unique<RigidCylinder<dim>>(
+                    point,
+                    to_tensor<dim>(pair.obstacle_axis),
+                    pair.obstacle_radius));
+                else
+                  obstacles.push_back(
+                    std::make_unique<RigidCylinder<dim>>(point,
+                                                         pair.obstacle_radius));
+            }
+          auto motion = std::make_unique<FunctionParser<dim>>(dim);
+          try
+            {
+              motion->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
+                                 std::vector<std::string>(
+                                   pair.obstacle_motion.begin(),
+                                   pair.obstacle_motion.begin() + dim),
+                                 parameters.boundary_conditions.constants,
+                                 true);
+              motion->value(Point<dim>(), 0);
+            }
+          catch (const ExceptionBase &)
+            {
+              throw InputError(pair_name(p) +
+                               ", parameter 'Obstacle motion': cannot parse "
+                               "the expressions; give Dimension expressions "
+                               "of t separated by ';'.");
+            }
+          motions.push_back(std::move(motion));
+        }
+    }
+
+
+    template <int dim>
+    LawParameters
+    ContactProblem<dim>::law_parameters(const unsigned int p) const
+    {
+      LawParameters law;
+      law.rho_n              = rho_n[p];
+      law.rho_t              = rho_t[p];
+      law.mu                 = parameters.contact.pairs[p].friction;
+      law.threshold_newton   = !parameters.contact.frozen_threshold;
+      law.threshold_coupling = parameters.contact.threshold_coupling;
+      law.penalty            = parameters.contact.penalty;
+      return law;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::setup(const AffineConstraints<double> &u_constraints,
+                               const IndexSet &                 owned_u,
+                               const IndexSet &                 relevant_u,
+                               ConditionalOStream &             pcout)
+    {
+      const auto &       pairs   = parameters.contact.pairs;
+      const unsigned int n_pairs = pairs.size();
+      n_u                        = dof_handler.n_dofs();
+
+      // Which pair a boundary id is slave / master of.
+      std::map<types::boundary_id, unsigned int> slave_of, master_of;
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        {
+          for (const auto id : pairs[p].slave_ids)
+            if (!slave_of.emplace(id, p).second)
+              throw InputError(pair_name(p) + ", parameter 'Slave boundary "
+                                              "id': boundary " +
+                               std::to_string(id) +
+                               " is already the slave surface of " +
+                               pair_name(slave_of[id]) +
+                               ". Each slave boundary belongs to one pair.");
+          if (pairs[p].master == MasterType::body)
+            for (const auto id : pairs[p].master_ids)
+              master_of.emplace(id, p);
+        }
+
+      // Slave nodes seen by this rank, keyed by their x-DoF.
+      struct SeenNode
+      {
+        std::array<types::global_dof_index, dim> dofs;
+        std::vector<Tensor<1, dim>>              normals;
+        unsigned int                             pair;
+      };
+      std::map<types::global_dof_index, SeenNode> seen;
+
+      const QGauss<dim - 1> centre_quadrature(1);
+      FEFaceValues<dim>     centre_values(fe,
+                                      centre_quadrature,
+                                      update_normal_vectors);
+      const unsigned int    n_cell_dofs = fe.n_dofs_per_cell();
+      std::vector<types::global_dof_index> cell_dofs(n_cell_dofs);
+      std::vector<double> h_sum(n_pairs, 0.), h_count(n_pairs, 0.),
+        e_max(n_pairs, 0.);
+      slave_faces.clear();
+      master_faces.clear();
+
+      // Master faces this rank owns, packed for the all-gather.
+      std::vector<double>                  master_reals;
+      std::vector<types::global_dof_index> master_ints;
+      std::vector<types::global_dof_index> line_ints;
+      std::vector<double>                  line_reals;
+      const unsigned int n_face_nodes = face_fe.n_dofs_per_cell();
+      const MappingQ1<dim> mapping;
+
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              {
+                const auto id = cell->face(f)->boundary_id();
+                cell->get_dof_indices(cell_dofs);
+                if (const auto s = slave_of.find(id); s != slave_of.end())
+                  {
+                    const unsigned int p = s->second;
+                    centre_values.reinit(cell, f);
+                    SlaveFace face;
+                    face.cell           = cell;
+                    face.face           = f;
+                    face.pair           = p;
+                    face.outward_normal = centre_values.normal_vector(0);
+                    for (unsigned int i = 0; i < n_cell_dofs; ++i)
+                      if (fe.has_support_on_face(i, f))
+                        {
+                          face.u_local.push_back(i);
+                          const auto ci = fe.system_to_component_index(i);
+                          if (ci.first != 0)
+                            continue;
+                          face.node_local.push_back(i);
+                          auto &node = seen[cell_dofs[i]];
+                          for (unsigned int c = 0; c < dim; ++c)
+                            node.dofs[c] =
+                              cell_dofs[fe.component_to_system_index(c,
+                                                                     ci.second)];
+                          node.normals.push_back(face.outward_normal);
+                          node.pair = p;
+                        }
+                    if (cell->is_locally_owned())
+                      {
+                        h_sum[p] += cell->face(f)->diameter();
+                        h_count[p] += 1;
+                        e_max[p] = std::max(
+                          e_max[p],
+                          materials.at(cell->material_id()).youngs_modulus());
+                        slave_faces.push_back(face);
+                      }
+                  }
+                else if (const auto m = master_of.find(id);
+                         m != master_of.end() && cell->is_locally_owned())
+                  {
+                    master_ints.push_back(m->second);
+                    // Nodes in the face's FE_Q<dim-1> order (see
+                    // project_onto_face), dim DoFs each.
+                    std::vector<types::global_dof_index> node_dofs(
+                      n_face_nodes * dim);
+                    std::vector<Point<dim>> X(n_face_nodes);
+                    for (unsigned int i = 0; i < fe.n_dofs_per_face(); ++i)
+                      {
+                        const auto [c, k] = fe.face_system_to_component_index(i);
+                        const unsigned int cell_i = fe.face_to_cell_index(
+                          i,
+                          f,
+                          cell->face_orientation(f),
+                          cell->face_flip(f),
+                          cell->face_rotation(f));
+                        node_dofs[k * dim + c] = cell_dofs[cell_i];
+                        if (c == 0)
+                          X[k] = mapping.transform_unit_to_real_cell(
+                            cell, fe.unit_support_point(cell_i));
+                      }
+                    for (const auto d : node_dofs)
+                      {
+                        master_ints.push_back(d);
+                        if (const auto *entries =
+                              u_constraints.get_constraint_entries(d))
+                          {
+                            line_ints.push_back(d);
+                            line_ints.push_back(entries->size());
+                            for (const auto &e : *entries)
+                              {
+                                line_ints.push_back(e.first);
+                                line_reals.push_back(e.second);
+                              }
+                          }
+                      }
+                    for (const auto &x : X)
+                      for (unsigned int d = 0; d < dim; ++d)
+                        master_reals.push_back(x[d]);
+                    const Point<dim> c = cell->center();
+                    for (unsigned int d = 0; d < dim; ++d)
+                      master_reals.push_back(c[d]);
+                  }
+              }
+
+      // Coefficients (formulation.md 8, "magic coefficients"): rho_n = c_n
+      // E / h with h the mean slave face size; rho_t = c_t rho_n / (mu
+      // p_ref) makes the tangential stiffness mu p_ref rho_t of a sticking
+      // point comparable to rho_n (see update_coefficients); before any
+      // pressure is known p_ref = 1e-3 E.
+      rho_n.assign(n_pairs, 0.);
+      rho_t.assign(n_pairs, 0.);
+      face_size.assign(n_pairs, 0.);
+      youngs.assign(n_pairs, 0.);
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        {
+          const double hs = Utilities::MPI::sum(h_sum[p], comm);
+          const double hc = Utilities::MPI::sum(h_count[p], comm);
+          const double E  = Utilities::MPI::max(e_max[p], comm);
+          if (hc == 0)
+            throw InputError(pair_name(p) +
+                             ", parameter 'Slave boundary id': no boundary "
+                             "face of the mesh has these ids. Use ids the "
+                             "mesh has (see 'Boundary ids' of the bodies).");
+          face_size[p] = hs / hc;
+          youngs[p]    = E;
+          rho_n[p]     = pairs[p].rho_n_factor * E / face_size[p];
+          rho_t[p]     = pairs[p].friction > 0 ?
+                           pairs[p].rho_t_factor * rho_n[p] /
+                             (pairs[p].friction * 1e-3 * E) :
+                           1.;
+        }
+
+      // Owned slave nodes: exclusion (Dirichlet on a component along the
+      // face normal -> no contact; along the face -> no friction) and
+      // hanging-node weights, decided by the owner.
+      std::vector<types::global_dof_index> owned_nodes;
+      for (const auto &[dof0, node] : seen)
+        if (owned_u.is_element(dof0))
+          owned_nodes.push_back(dof0);
+      std::sort(owned_nodes.begin(), owned_nodes.end());
+      types::global_dof_index n_owned_friction = 0;
+      for (const auto d : owned_nodes)
+        if (pairs[seen[d].pair].friction > 0)
+          ++n_owned_friction;
+      const types::global_dof_index n_owned_nodes = owned_nodes.size();
+      n_lambda   = Utilities::MPI::sum(n_owned_nodes, comm);
+      n_friction = Utilities::MPI::sum(n_owned_friction, comm) * (dim - 1);
+      n_nodes_total = n_lambda;
+      const types::global_dof_index lambda_offset =
+        n_u + offset_of(n_owned_nodes, comm);
+      const types::global_dof_index friction_offset =
+        n_u + n_lambda + offset_of(n_owned_friction, comm) * (dim - 1);
+
+      std::vector<double> node_pack;
+      {
+        types::global_dof_index jf = 0;
+        for (unsigned int j = 0; j < owned_nodes.size(); ++j)
+          {
+            const auto &node = seen[owned_nodes[j]];
+            bool        exclude_contact = false, exclude_friction = false;
+            std::vector<std::pair<types::global_dof_index, double>> hanging;
+            for (unsigned int c = 0; c < dim; ++c)
+              if (const auto *entries =
+                    u_constraints.get_constraint_entries(node.dofs[c]))
+                {
+                  if (!entries->empty())
+                    {
+                      if (c == 0)
+                        hanging = *entries;
+                      continue;
+                    }
+                  for (const auto &n : node.normals)
+                    (std::abs(n[c]) > 0.5 ? exclude_contact :
+                                            exclude_friction) = true;
+                }
+            const bool friction = pairs[node.pair].friction > 0;
+            node_pack.push_back(owned_nodes[j]);
+            node_pack.push_back(lambda_offset + j);
+            node_pack.push_back(friction ? friction_offset + (dim - 1) * jf++ :
+                                           -1.);
+            node_pack.push_back(exclude_contact);
+            node_pack.push_back(exclude_friction && friction);
+            node_pack.push_back(node.pair);
+            node_pack.push_back(hanging.size());
+            for (const auto &[d, w] : hanging)
+              {
+                node_pack.push_back(d);
+                node_pack.push_back(w);
+              }
+          }
+      }
+      nodes.clear();
+      unsigned int n_excluded_contact = 0, n_excluded_friction = 0,
+                   n_hanging = 0;
+      for (const auto &pack : Utilities::MPI::all_gather(comm, node_pack))
+        for (unsigned int i = 0; i < pack.size();)
+          {
+            NodeInfo info;
+            const auto dof0 = static_cast<types::global_dof_index>(pack[i]);
+            info.lambda     = static_cast<types::global_dof_index>(pack[i + 1]);
+            if (pack[i + 2] >= 0)
+              info.friction =
+                static_cast<types::global_dof_index>(pack[i + 2]);
+            info.exclude_contact  = pack[i + 3] != 0;
+            info.exclude_friction = pack[i + 4] != 0;
+            info.pair             = static_cast<unsigned int>(pack[i + 5]);
+            const unsigned int nh = static_cast<unsigned int>(pack[i + 6]);
+            i += 7;
+            for (unsigned int k = 0; k < nh; ++k, i += 2)
+              info.hanging.emplace_back(
+                static_cast<types::global_dof_index>(pack[i]), pack[i + 1]);
+            n_excluded_contact += info.exclude_contact;
+            n_excluded_friction +=
+              !info.exclude_contact && info.exclude_friction;
+            n_hanging += !info.hanging.empty();
+            nodes.emplace(dof0, std::move(info));
+          }
+
+      owned_multipliers = IndexSet(n_system());
+      if (n_owned_nodes > 0)
+        owned_multipliers.add_range(lambda_offset,
+                                    lambda_offset + n_owned_nodes);
+      if (n_owned_friction > 0)
+        owned_multipliers.add_range(friction_offset,
+                                    friction_offset +
+                                      n_owned_friction * (dim - 1));
+      owned_multipliers.compress();
+
+      // Multiplier numbers of the slave faces.
+      extra = IndexSet(n_system());
+      extra.add_indices(owned_multipliers);
+      const auto add_node = [&](const types::global_dof_index dof0) {
+        const auto &info = nodes.at(dof0);
+        extra.add_index(info.lambda);
+        if (info.friction != numbers::invalid_dof_index)
+          extra.add_range(info.friction, info.friction + dim - 1);
+      };
+      for (auto &face : slave_faces)
+        {
+          face.cell->get_dof_indices(cell_dofs);
+          for (const auto i : face.node_local)
+            {
+              const auto &info = nodes.at(cell_dofs[i]);
+              face.lambda_dofs.push_back(info.lambda);
+              add_node(cell_dofs[i]);
+              for (const auto &h : info.hanging)
+                add_node(h.first);
+              if (info.friction != numbers::invalid_dof_index)
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  face.friction_dofs.push_back(info.friction + k);
+            }
+        }
+
+      // Master faces and the constraint lines of their DoFs, from all ranks.
+      const auto all_reals = Utilities::MPI::all_gather(comm, master_reals);
+      const auto all_ints  = Utilities::MPI::all_gather(comm, master_ints);
+      for (unsigned int r = 0; r < all_ints.size(); ++r)
+        {
+          unsigned int ir = 0;
+          for (unsigned int ii = 0; ii < all_ints[r].size();)
+            {
+              MasterFace face;
+              face.pair = all_ints[r][ii++];
+              face.dofs.assign(all_ints[r].begin() + ii,
+                               all_ints[r].begin() + ii + n_face_nodes * dim);
+              ii += n_face_nodes * dim;
+              face.X.resize(n_face_nodes);
+              for (auto &x : face.X)
+                for (unsigned int d = 0; d < dim; ++d)
+                  x[d] = all_reals[r][ir++];
+              for (unsigned int d = 0; d < dim; ++d)
+                face.inside[d] = all_reals[r][ir++];
+              for (const auto d : face.dofs)
+                extra.add_index(d);
+              master_faces.push_back(std::move(face));
+            }
+        }
+      master_lines.clear();
+      {
+        const auto all_line_ints  = Utilities::MPI::all_gather(comm, line_ints);
+        const auto all_line_reals = Utilities::MPI::all_gather(comm, line_reals);
+        std::set<types::global_dof_index> done;
+        for (unsigned int r = 0; r < all_line_ints.size(); ++r)
+          {
+            unsigned int ir = 0;
+            for (unsigned int ii = 0; ii < all_line_ints[r].size();)
+              {
+                const auto         d  = all_line_ints[r][ii++];
+                const unsigned int ne = all_line_ints[r][ii++];
+                std::vector<std::pair<types::global_dof_index, double>> e;
+                for (unsigned int k = 0; k < ne; ++k)
+                  {
+                    e.emplace_back(all_line_ints[r][ii++],
+                                   all_line_reals[r][ir++]);
+                    extra.add_index(e.back().first);
+                  }
+                if (done.insert(d).second)
+                  master_lines.emplace_back(d, std::move(e));
+              }
+          }
+      }
+      extra.compress();
+      (void)relevant_u;
+
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        if (pairs[p].master == MasterType::body)
+          {
+            bool found = false;
+            for (const auto &f : master_faces)
+              found |= (f.pair == p);
+            if (!found)
+              throw InputError(pair_name(p) +
+                               ", parameter 'Master boundary id': no boundary "
+                               "face of the mesh has these ids. Use ids the "
+                               "mesh has (see 'Boundary ids' of the bodies).");
+          }
+
+      // Contact points: the rule's points on every owned slave face.
+      points.clear();
+      for (unsigned int f = 0; f < slave_faces.size(); ++f)
+        for (unsigned int q = 0; q < rule->face_quadrature(f).size(); ++q)
+          {
+            ContactPoint point;
+            point.face = f;
+            point.q    = q;
+            points.push_back(point);
+          }
+
+      const unsigned int n_points_total =
+        Utilities::MPI::sum(static_cast<unsigned int>(points.size()), comm);
+      pcout << "Contact: " << n_pairs << " pair(s), rule " << rule->name()
+            << ", " << n_points_total << " contact points on "
+            << Utilities::MPI::sum(static_cast<unsigned int>(
+                                     slave_faces.size()),
+                                   comm)
+            << " slave faces, " << n_lambda << " slave nodes" << std::endl;
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        pcout << "  pair " << p + 1 << ": mu = " << pairs[p].friction
+              << ", h = " << std::setprecision(4) << face_size[p]
+              << ", rho_n = " << rho_n[p] << ", rho_t = " << rho_t[p]
+              << std::setprecision(6) << std::endl;
+      if (n_excluded_contact + n_excluded_friction > 0)
+        pcout << "  over-constraint: " << n_excluded_contact
+              << " slave node(s) with a Dirichlet condition along the normal "
+                 "excluded from contact, "
+              << n_excluded_friction
+              << " with a tangential one excluded from friction" << std::endl;
+      if (n_hanging > 0)
+        pcout << "  " << n_hanging
+              << " hanging slave node(s): multipliers interpolated"
+              << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::add_constraint_lines(
+      AffineConstraints<double> &constraints) const
+    {
+      const IndexSet &local = constraints.get_local_lines();
+      const auto      can   = [&](const types::global_dof_index i) {
+        return (local.size() == 0 || local.is_element(i)) &&
+               !constraints.is_constrained(i);
+      };
+      for (const auto &[dof0, info] : nodes)
+        {
+          const bool has_friction = info.friction != numbers::invalid_dof_index;
+          if (info.exclude_contact || !info.hanging.empty())
+            {
+              if (can(info.lambda))
+                {
+                  constraints.add_line(info.lambda);
+                  if (!info.exclude_contact)
+                    for (const auto &[parent, w] : info.hanging)
+                      constraints.add_entry(info.lambda,
+                                            nodes.at(parent).lambda,
+                                            w);
+                }
+            }
+          if (has_friction &&
+              (info.exclude_contact || info.exclude_friction ||
+               !info.hanging.empty()))
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              if (can(info.friction + k))
+                {
+                  constraints.add_line(info.friction + k);
+                  if (!info.exclude_contact && !info.exclude_friction)
+                    for (const auto &[parent, w] : info.hanging)
+                      constraints.add_entry(info.friction + k,
+                                            nodes.at(parent).friction + k,
+                                            w);
+                }
+        }
+      for (const auto &[d, entries] : master_lines)
+        if (can(d))
+          {
+            constraints.add_line(d);
+            constraints.add_entries(d, entries);
+          }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::pair(const TrilinosWrappers::MPI::Vector &state,
+                              const double                         time,
+                              const double                         t0)
+    {
+      const auto &pairs = parameters.contact.pairs;
+
+      // Rigid obstacles at time t; their displacement since the step start.
+      std::vector<Tensor<1, dim>> rigid_increment(pairs.size());
+      for (unsigned int p = 0; p < pairs.size(); ++p)
+        if (obstacles[p])
+          {
+            Tensor<1, dim> d0, d1;
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                motions[p]->set_time(t0);
+                d0[c] = motions[p]->value(Point<dim>(), c);
+                motions[p]->set_time(time);
+                d1[c] = motions[p]->value(Point<dim>(), c);
+              }
+            obstacles[p]->set_translation(d1);
+            rigid_increment[p] = d1 - d0;
+          }
+
+      // Master faces in the current configuration and their boxes.
+      const unsigned int n_face_nodes = face_fe.n_dofs_per_cell();
+      std::vector<std::vector<Point<dim>>> x_master(master_faces.size());
+      std::vector<Point<dim>>              inside(master_faces.size());
+      std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
+      for (unsigned int m = 0; m < master_faces.size(); ++m)
+        {
+          const auto &face = master_faces[m];
+          x_master[m].resize(n_face_nodes);
+          Tensor<1, dim> mean_u;
+          for (unsigned int k = 0; k < n_face_nodes; ++k)
+            {
+              x_master[m][k] = face.X[k];
+              for (unsigned int c = 0; c < dim; ++c)
+                x_master[m][k][c] += state[face.dofs[k * dim + c]];
+              mean_u += (x_master[m][k] - face.X[k]) / n_face_nodes;
+            }
+          inside[m] = face.inside + mean_u;
+          BoundingBox<dim> box(x_master[m]);
+          box.extend(0.5 * face_size[face.pair]);
+          boxes.emplace_back(box, m);
+        }
+      const auto tree = pack_rtree(boxes);
+
+      const auto &           contact = parameters.contact;
+      const FEValuesExtractors::Vector u(0);
+      std::unique_ptr<FEFaceValues<dim>> fe_face_values;
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      for (auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (!fe_face_values || point.q == 0)
+            {
+              fe_face_values = std::make_unique<FEFaceValues<dim>>(
+                fe,
+                rule->face_quadrature(point.face),
+                update_values | update_quadrature_points |
+                  update_normal_vectors | update_JxW_values);
+              fe_face_values->reinit(face.cell, face.face);
+              face.cell->get_dof_indices(cell_dofs);
+            }
+          const unsigned int q = point.q;
+          const unsigned int p = face.pair;
+          point.x_ref          = fe_face_values->quadrature_point(q);
+          point.weight         = fe_face_values->JxW(q);
+          Point<dim> x_e       = point.x_ref;
+          double     lambda    = 0;
+          for (const auto i : face.u_local)
+            x_e[fe.system_to_component_index(i).first] +=
+              state[cell_dofs[i]] * fe_face_values->shape_value(i, q);
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            lambda += state[face.lambda_dofs[l]] *
+                      fe_face_values->shape_value(face.node_local[l], q);
+          point.lambda_frozen = lambda;
+
+          point.paired      = false;
+          point.master_face = -1;
+          if (obstacles[p])
+            {
+              const auto projection = obstacles[p]->project(x_e);
+              point.paired          = true;
+              point.normal          = projection.normal;
+              point.x_m_rigid       = projection.x_m;
+              point.rigid_increment = rigid_increment[p];
+            }
+          else
+            {
+              BoundingBox<dim> query(std::make_pair(x_e, x_e));
+              query.extend(0.5 * face_size[p]);
+              std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+              tree.query(boost::geometry::index::intersects(query),
+                         std::back_inserter(hits));
+              // Inside projections first (closest), then the smallest
+              // violation within the tolerance.
+              double best_inside = std::numeric_limits<double>::max();
+              double best_violation =
+                contact.projection_tolerance * (1 + 1e-12);
+              FaceProjection<dim> best;
+              int                 best_face = -1;
+              bool                best_is_inside = false;
+              for (const auto &hit : hits)
+                {
+                  const unsigned int m = hit.second;
+                  if (master_faces[m].pair != p)
+                    continue;
+                  const auto proj =
+                    project_onto_face(x_e, x_master[m], inside[m]);
+                  if (!proj.converged)
+                    continue;
+                  const double distance = x_e.distance(proj.x_m);
+                  if (proj.inside)
+                    {
+                      if (distance < best_inside)
+                        {
+                          best_inside    = distance;
+                          best           = proj;
+                          best_face      = m;
+                          best_is_inside = true;
+                        }
+                    }
+                  else if (!best_is_inside && proj.violation < best_violation)
+                    {
+                      best_violation = proj.violation;
+                      best           = proj;
+                      best_face      = m;
+                    }
+                }
+              if (best_face >= 0)
+                {
+                  point.paired      = true;
+                  point.master_face = best_face;
+                  point.normal      = best.normal;
+                  point.N_m.resize(n_face_nodes);
+                  for (unsigned int k = 0; k < n_face_nodes; ++k)
+                    point.N_m[k] = face_fe.shape_value(k, best.xi);
+                }
+            }
+          if (!point.paired)
+            point.normal = -fe_face_values->normal_vector(q);
+          // Normal choice (nodal rule only, checked at input).
+          if (contact.normal == NormalChoice::slave)
+            point.normal = -fe_face_values->normal_vector(q);
+          else if (contact.normal == NormalChoice::average && point.paired)
+            {
+              point.normal -= fe_face_values->normal_vector(q);
+              point.normal /= point.normal.norm();
+            }
+          point.tangents = tangent_basis<dim>(point.normal);
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::update_coefficients(
+      const TrilinosWrappers::MPI::Vector &state)
+    {
+      const auto &       pairs = parameters.contact.pairs;
+      std::vector<double> sum2(pairs.size(), 0.), count(pairs.size(), 0.);
+      for (const auto &[dof0, node] : nodes)
+        if (owned_multipliers.is_element(node.lambda) && state[node.lambda] < 0)
+          {
+            sum2[node.pair] += state[node.lambda] * state[node.lambda];
+            count[node.pair] += 1;
+          }
+      for (unsigned int p = 0; p < pairs.size(); ++p)
+        {
+          const double s = Utilities::MPI::sum(sum2[p], comm);
+          const double n = Utilities::MPI::sum(count[p], comm);
+          if (pairs[p].friction > 0 && n > 0 && s > 0)
+            rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
+                       (pairs[p].friction * std::sqrt(s / n));
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::add_sparsity(
+      TrilinosWrappers::SparsityPattern &sparsity,
+      const AffineConstraints<double> &  constraints) const
+    {
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      std::vector<types::global_dof_index> dofs;
+      int                                  last_face = -1;
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (static_cast<int>(point.face) != last_face)
+            {
+              face.cell->get_dof_indices(cell_dofs);
+              last_face = point.face;
+            }
+          dofs.clear();
+          for (const auto i : face.u_local)
+            dofs.push_back(cell_dofs[i]);
+          if (point.master_face >= 0)
+            for (const auto d : master_faces[point.master_face].dofs)
+              dofs.push_back(d);
+          dofs.insert(dofs.end(),
+                      face.lambda_dofs.begin(),
+                      face.lambda_dofs.end());
+          dofs.insert(dofs.end(),
+                      face.friction_dofs.begin(),
+                      face.friction_dofs.end());
+          constraints.add_entries_local_to_global(dofs, sparsity, false);
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::set_initial_multipliers(
+      const TrilinosWrappers::MPI::Vector &state,
+      TrilinosWrappers::MPI::Vector &      state_owned) const
+    {
+      const auto status = parameters.contact.initial_status;
+      if (status == InitialStatus::penetrating)
+        return;
+      // lambda_aug = lambda - rho_n g = -/+ delta at every point, as the
+      // psi-weighted average over the node's points.
+      auto num = writable_vector(owned_multipliers, extra, comm);
+      auto den = writable_vector(owned_multipliers, extra, comm);
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      std::unique_ptr<FEFaceValues<dim>>   fv;
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (!fv || point.q == 0)
+            {
+              fv = std::make_unique<FEFaceValues<dim>>(
+                fe,
+                rule->face_quadrature(point.face),
+                update_values | update_quadrature_points | update_JxW_values);
+              fv->reinit(face.cell, face.face);
+              face.cell->get_dof_indices(cell_dofs);
+            }
+          const unsigned int p = face.pair;
+          double             g = -std::numeric_limits<double>::max();
+          if (point.paired)
+            {
+              Point<dim> x_e = fv->quadrature_point(point.q);
+              for (const auto i : face.u_local)
+                x_e[fe.system_to_component_index(i).first] +=
+                  state[cell_dofs[i]] * fv->shape_value(i, point.q);
+              Point<dim> x_m = point.x_m_rigid;
+              if (point.master_face >= 0)
+                {
+                  const auto &m = master_faces[point.master_face];
+                  x_m           = Point<dim>();
+                  for (unsigned int k = 0; k < m.X.size(); ++k)
+                    for (unsigned int c = 0; c < dim; ++c)
+                      x_m[c] += point.N_m[k] *
+                                (m.X[k][c] + state[m.dofs[k * dim + c]]);
+                }
+              g = (x_e - x_m) * point.normal +
+                  parameters.contact.pairs[p].gap_offset;
+            }
+          // delta: a small pressure relative to the stiffness scale.
+          const double delta = 1e-6 * rho_n[p] * face_size[p];
+          double       target;
+          if (status == InitialStatus::closed)
+            target = std::min(0., rho_n[p] * std::max(g, -1e300 / rho_n[p])) -
+                     delta;
+          else
+            target = std::max(0., rho_n[p] * g) + delta;
+          if (status == InitialStatus::closed && !point.paired)
+            continue;
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const double w =
+                point.weight * fv->shape_value(face.node_local[l], point.q);
+              add_entry(num, face.lambda_dofs[l], w * target);
+              add_entry(den, face.lambda_dofs[l], w);
+            }
+        }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned_multipliers)
+        if (i < n_u + n_lambda && den[i] != 0)
+          state_owned[i] = num[i] / den[i];
+      state_owned.compress(VectorOperation::insert);
+    }
+
+
+    template <int dim>
+    ContactStatistics
+    ContactProblem<dim>::assemble(const TrilinosWrappers::MPI::Vector &state,
+                                  const TrilinosWrappers::MPI::Vector &start,
+                                  const AffineConstraints<double> &constraints,
+                                  TrilinosWrappers::SparseMatrix * matrix,
+                                  TrilinosWrappers::MPI::Vector &  rhs,
+                                  TrilinosWrappers::MPI::Vector &contact_force)
+    {
+      ContactStatistics stats;
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      std::vector<types::global_dof_index> dofs;
+      FullMatrix<double>                   K;
+      Vector<double>                       F;
+      std::unique_ptr<FEFaceValues<dim>>   fv;
+
+      for (auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (!fv || point.q == 0)
+            {
+              fv = std::make_unique<FEFaceValues<dim>>(
+                fe,
+                rule->face_quadrature(point.face),
+                update_values | update_quadrature_points | update_JxW_values);
+              fv->reinit(face.cell, face.face);
+              face.cell->get_dof_indices(cell_dofs);
+            }
+          const unsigned int q    = point.q;
+          const unsigned int p    = face.pair;
+          const auto         law  = law_parameters(p);
+          const bool         fric = law.mu > 0;
+
+          // Point state (formulation.md 2).
+          const unsigned int n_e = face.u_local.size();
+          const unsigned int n_l = face.node_local.size();
+          std::vector<double> N_e(n_e), psi(n_l);
+          Point<dim>          x_e = fv->quadrature_point(q);
+          Tensor<1, dim>      du_e;
+          for (unsigned int a = 0; a < n_e; ++a)
+            {
+              const unsigned int i = face.u_local[a];
+              const unsigned int c = fe.system_to_component_index(i).first;
+              N_e[a]               = fv->shape_value(i, q);
+              x_e[c] += N_e[a] * state[cell_dofs[i]];
+              du_e[c] += N_e[a] * (state[cell_dofs[i]] - start[cell_dofs[i]]);
+            }
+          PointState<dim> s;
+          s.lambda = 0;
+          for (unsigned int l = 0; l < n_l; ++l)
+            {
+              psi[l] = fv->shape_value(face.node_local[l], q);
+              s.lambda += psi[l] * state[face.lambda_dofs[l]];
+              if (fric)
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  s.Lambda[k] +=
+                    psi[l] * state[face.friction_dofs[l * (dim - 1) + k]];
+            }
+          s.normal          = point.normal;
+          s.tangents        = point.tangents;
+          s.lambda_f_frozen = point.lambda_frozen;
+
+          const MasterFace *master =
+            point.master_face >= 0 ? &master_faces[point.master_face] : nullptr;
+          const unsigned int n_m = master ? master->dofs.size() : 0;
+          Point<dim>         x_m = point.x_m_rigid;
+          Tensor<1, dim>     du_m = point.rigid_increment;
+          if (master)
+            {
+              x_m  = Point<dim>();
+              du_m = Tensor<1, dim>();
+              for (unsigned int k = 0; k < master->X.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    const auto d = master->dofs[k * dim + c];
+                    x_m[c] += point.N_m[k] * (master->X[k][c] + state[d]);
+                    du_m[c] += point.N_m[k] * (state[d] - start[d]);
+                  }
+            }
+          if (point.paired)
+            s.gap = (x_e - x_m) * s.normal +
+                    parameters.contact.pairs[p].gap_offset;
+          else
+            s.gap = -1e30; // no master in reach: free
+          s.slip = du_e - du_m;
+          s.slip -= (s.slip * s.normal) * s.normal;
+
+          const auto r = evaluate_contact_law(s, law);
+
+          // Statistics and the values for output.
+          ++stats.n_points;
+          stats.n_unpaired += !point.paired;
+          if (r.in_contact)
+            {
+              ++stats.n_contact;
+              if (fric && r.friction_active)
+                (r.status == PointStatus::stick ? stats.n_stick :
+                                                  stats.n_slip)++;
+            }
+          const PointStatus status =
+            !r.in_contact ? PointStatus::free :
+                            (fric && r.friction_active ? r.status :
+                                                         PointStatus::slip);
+          stats.n_changed += (status != point.status);
+          point.status = status;
+          point.gap    = s.gap;
+          point.lambda = s.lambda;
+          point.Lambda = s.Lambda;
+          point.force  = r.force;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            point.slip[k] = s.slip * s.tangents[k];
+
+          // Local dofs: e | m | lambda | Lambda.
+          const unsigned int n_f = fric ? n_l * (dim - 1) : 0;
+          const unsigned int o_m = n_e, o_c = n_e + n_m, o_f = o_c + n_l;
+          const unsigned int n   = o_f + n_f;
+          dofs.resize(n);
+          for (unsigned int a = 0; a < n_e; ++a)
+            dofs[a] = cell_dofs[face.u_local[a]];
+          for (unsigned int b = 0; b < n_m; ++b)
+            dofs[o_m + b] = master->dofs[b];
+          for (unsigned int l = 0; l < n_l; ++l)
+            dofs[o_c + l] = face.lambda_dofs[l];
+          for (unsigned int b = 0; b < n_f; ++b)
+            dofs[o_f + b] = face.friction_dofs[b];
+
+          // Shape value and component of each displacement column, with the
+          // sign of d = u^e - u^m.
+          std::vector<double>       Nd(n_e + n_m);
+          std::vector<unsigned int> comp(n_e + n_m);
+          for (unsigned int a = 0; a < n_e; ++a)
+            {
+              Nd[a]   = N_e[a];
+              comp[a] = fe.system_to_component_index(face.u_local[a]).first;
+            }
+          for (unsigned int b = 0; b < n_m; ++b)
+            {
+              Nd[n_e + b]   = -point.N_m[b / dim];
+              comp[n_e + b] = b % dim;
+            }
+
+          const double w  = point.weight;
+          const double sc = rho_n[p]; // row scaling of lambda rows
+          const double sf = rho_t[p]; // row scaling of Lambda rows
+          F.reinit(n);
+          for (unsigned int a = 0; a < n_e + n_m; ++a)
+            F[a] = -w * Nd[a] * r.force[comp[a]];
+          for (unsigned int l = 0; l < n_l; ++l)
+            {
+              F[o_c + l] = -sc * w * psi[l] * r.r_c;
+              for (unsigned int k = 0; k < (fric ? dim - 1 : 0); ++k)
+                F[o_f + l * (dim - 1) + k] = -sf * w * psi[l] * r.r_f[k];
+            }
+          for (unsigned int a = 0; a < n_e + n_m; ++a)
+            add_entry(contact_force, dofs[a], -F[a]);
+
+          if (matrix)
+            {
+              K.reinit(n, n);
+              for (unsigned int a = 0; a < n_e + n_m; ++a)
+                {
+                  for (unsigned int b = 0; b < n_e + n_m; ++b)
+                    K(a, b) =
+                      w * Nd[a] * Nd[b] * r.dforce_dd[comp[a]][comp[b]];
+                  for (unsigned int l = 0; l < n_l; ++l)
+                    {
+                      K(a, o_c + l) =
+                        w * Nd[a] * psi[l] * r.dforce_dlambda[comp[a]];
+                      K(o_c + l, a) = sc * w * psi[l] * Nd[a] *
+                                      r.drc_dd[comp[a]];
+                      for (unsigned int k = 0; k < (fric ? dim - 1 : 0); ++k)
+                        {
+                          K(a, o_f + l * (dim - 1) + k) =
+                            w * Nd[a] * psi[l] *
+                            r.dforce_dLambda[k][comp[a]];
+                          K(o_f + l * (dim - 1) + k, a) =
+                            sf * w * psi[l] * Nd[a] * r.drf_dd[k][comp[a]];
+                        }
+                    }
+                }
+              for (unsigned int l = 0; l < n_l; ++l)
+                for (unsigned int m = 0; m < n_l; ++m)
+                  {
+                    K(o_c + l, o_c + m) = sc * w * psi[l] * psi[m] *
+                                          r.drc_dlambda;
+                    for (unsigned int k = 0; k < (fric ? dim - 1 : 0); ++k)
+                      {
+                        K(o_f + l * (dim - 1) + k, o_c + m) =
+                          sf * w * psi[l] * psi[m] * r.drf_dlambda[k];
+                        for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                          K(o_f + l * (dim - 1) + k,
+                            o_f + m * (dim - 1) + kk) =
+                            sf * w * psi[l] * psi[m] * r.drf_dLambda[k][kk];
+                      }
+                  }
+              constraints.distribute_local_to_global(K, F, dofs, *matrix, rhs);
+            }
+          else
+            constraints.distribute_local_to_global(F, dofs, rhs);
+        }
+
+      stats.n_points   = Utilities::MPI::sum(stats.n_points, comm);
+      stats.n_unpaired = Utilities::MPI::sum(stats.n_unpaired, comm);
+      stats.n_contact  = Utilities::MPI::sum(stats.n_contact, comm);
+      stats.n_stick    = Utilities::MPI::sum(stats.n_stick, comm);
+      stats.n_slip     = Utilities::MPI::sum(stats.n_slip, comm);
+      stats.n_changed  = Utilities::MPI::sum(stats.n_changed, comm);
+      return stats;
+    }
+
+
+    template <int dim>
+    std::vector<typename ContactProblem<dim>::PairSummary>
+    ContactProblem<dim>::summary() const
+    {
+      std::vector<PairSummary> result(parameters.contact.pairs.size());
+      for (const auto &point : points)
+        {
+          auto &r = result[slave_faces[point.face].pair];
+          r.force += point.weight * point.force;
+          r.p_max = std::max(r.p_max, -point.lambda);
+          ++r.n_points;
+          r.n_contact += point.status != PointStatus::free;
+          r.n_stick += point.status == PointStatus::stick;
+          r.n_slip += point.status == PointStatus::slip;
+        }
+      for (auto &r : result)
+        {
+          r.force     = Utilities::MPI::sum(r.force, comm);
+          r.p_max     = Utilities::MPI::max(r.p_max, comm);
+          r.n_points  = Utilities::MPI::sum(r.n_points, comm);
+          r.n_contact = Utilities::MPI::sum(r.n_contact, comm);
+          r.n_stick   = Utilities::MPI::sum(r.n_stick, comm);
+          r.n_slip    = Utilities::MPI::sum(r.n_slip, comm);
+        }
+      return result;
+    }
+
+
+    template <int dim>
+    std::vector<typename ContactProblem<dim>::PointRecord>
+    ContactProblem<dim>::gather_points() const
+    {
+      std::vector<double> pack;
+      for (const auto &point : points)
+        {
+          const unsigned int p = slave_faces[point.face].pair;
+          const double       mu = parameters.contact.pairs[p].friction;
+          pack.push_back(p);
+          for (unsigned int d = 0; d < dim; ++d)
+            pack.push_back(point.x_ref[d]);
+          pack.push_back(point.weight);
+          pack.push_back(-point.lambda);
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            pack.push_back(mu * point.lambda * point.Lambda[k]);
+          pack.push_back(point.gap);
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            pack.push_back(point.slip[k]);
+          pack.push_back(static_cast<double>(point.status));
+          pack.push_back(point.paired);
+        }
+      std::vector<PointRecord> records;
+      for (const auto &part : Utilities::MPI::all_gather(comm, pack))
+        for (unsigned int i = 0; i < part.size();)
+          {
+            PointRecord r;
+            r.pair = static_cast<unsigned int>(part[i++]);
+            for (unsigned int d = 0; d < dim; ++d)
+              r.x[d] = part[i++];
+            r.weight = part[i++];
+            r.p      = part[i++];
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              r.traction[k] = part[i++];
+            r.gap = part[i++];
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              r.slip[k] = part[i++];
+            r.status = static_cast<PointStatus>(static_cast<int>(part[i++]));
+            r.paired = part[i++] != 0;
+            records.push_back(r);
+          }
+      std::sort(records.begin(),
+                records.end(),
+                [](const PointRecord &a, const PointRecord &b) {
+                  if (a.pair != b.pair)
+                    return a.pair < b.pair;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (std::abs(a.x[d] - b.x[d]) > 1e-12 * (1 + std::abs(a.x[d])))
+                      return a.x[d] < b.x[d];
+                  return false;
+                });
+      return records;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::write_csv(const std::string &filename) const
+    {
+      const auto records = gather_points();
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      std::ofstream csv(filename);
+      const char *  axis[] = {"x", "y", "z"};
+      csv << "pair";
+      for (unsigned int d = 0; d < dim; ++d)
+        csv << "," << axis[d];
+      csv << ",p";
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        csv << ",traction_t" << k + 1;
+      csv << ",gap";
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        csv << ",slip_t" << k + 1;
+      csv << ",status\n";
+      csv << std::setprecision(10);
+      for (const auto &r : records)
+        {
+          csv << r.pair + 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            csv << "," << r.x[d];
+          csv << "," << r.p;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            csv << "," << r.traction[k];
+          csv << "," << (r.paired ? r.gap : std::nan(""));
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            csv << "," << r.slip[k];
+          csv << "," << to_string(r.status) << "\n";
+        }
+    }
+
+
+    template <int dim>
+    std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>>
+    ContactProblem<dim>::nodal_fields(const DoFHandler<dim> &scalar_dofs) const
+    {
+      const IndexSet owned = scalar_dofs.locally_owned_dofs();
+      IndexSet       relevant;
+      DoFTools::extract_locally_relevant_dofs(scalar_dofs, relevant);
+      std::vector<std::string> names = {"contact_pressure", "gap", "status"};
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        names.push_back("tangential_traction_" + std::to_string(k + 1));
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        names.push_back("slip_" + std::to_string(k + 1));
+      std::vector<TrilinosWrappers::MPI::Vector> sums(
+        names.size() + 1,
+        writable_vector(owned, relevant, comm));
+
+      std::unique_ptr<FEFaceValues<dim>> fv;
+      std::vector<types::global_dof_index> scalar_cell_dofs(
+        scalar_dofs.get_fe().n_dofs_per_cell());
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (!fv || point.q == 0)
+            {
+              fv = std::make_unique<FEFaceValues<dim>>(
+                fe, rule->face_quadrature(point.face), update_values);
+              fv->reinit(face.cell, face.face);
+              typename DoFHandler<dim>::active_cell_iterator scell(
+                &dof_handler.get_triangulation(),
+                face.cell->level(),
+                face.cell->index(),
+                &scalar_dofs);
+              scell->get_dof_indices(scalar_cell_dofs);
+            }
+          const double mu =
+            parameters.contact.pairs[slave_faces[point.face].pair].friction;
+          std::vector<double> values = {-point.lambda,
+                                        point.paired ? point.gap : 0.,
+                                        static_cast<double>(point.status)};
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            values.push_back(mu * point.lambda * point.Lambda[k]);
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            values.push_back(point.slip[k]);
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const unsigned int i = face.node_local[l];
+              const double w = point.weight * fv->shape_value(i, point.q);
+              const auto   d =
+                scalar_cell_dofs[fe.system_to_component_index(i).second];
+              for (unsigned int v = 0; v < values.size(); ++v)
+                add_entry(sums[v], d, w * values[v]);
+              add_entry(sums.back(), d, w);
+            }
+        }
+      for (auto &s : sums)
+        s.compress(VectorOperation::add);
+      std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>> result;
+      for (unsigned int v = 0; v < names.size(); ++v)
+        {
+          TrilinosWrappers::MPI::Vector owned_values(owned, comm);
+          for (const auto i : owned)
+            if (sums.back()[i] != 0)
+              owned_values[i] = sums[v][i] / sums.back()[i];
+          owned_values.compress(VectorOperation::insert);
+          TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
+          ghosted = owned_values;
+          result.emplace_back(names[v], ghosted);
+        }
+      return result;
+    }
+
+    template class ContactProblem<2>;
+    template class ContactProblem<3>;
+  } // namespace Contact
+} // namespace Signorini
