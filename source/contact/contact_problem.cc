@@ -161,10 +161,45 @@ namespace Signorini
 
 
     template <int dim>
+    const FEFaceValues<dim> &
+    ContactProblem<dim>::slave_values(const unsigned int f) const
+    {
+      const Quadrature<dim - 1> &quadrature = rule->face_quadrature(f);
+      if (!face_values || face_values_rule != &quadrature)
+        {
+          face_values = std::make_unique<FEFaceValues<dim>>(
+            fe,
+            quadrature,
+            update_values | update_quadrature_points | update_normal_vectors |
+              update_JxW_values);
+          face_values_rule = &quadrature;
+        }
+      face_values->reinit(slave_faces[f].cell, slave_faces[f].face);
+      return *face_values;
+    }
+
+
+    template <int dim>
+    Point<dim>
+    ContactProblem<dim>::slave_position(
+      const FEFaceValues<dim> &                   values,
+      const SlaveFace &                           face,
+      const std::vector<types::global_dof_index> &cell_dofs,
+      const unsigned int                          q,
+      const TrilinosWrappers::MPI::Vector &       state) const
+    {
+      Point<dim> x = values.quadrature_point(q);
+      for (const auto i : face.u_local)
+        x[fe.system_to_component_index(i).first] +=
+          state[cell_dofs[i]] * values.shape_value(i, q);
+      return x;
+    }
+
+
+    template <int dim>
     void
     ContactProblem<dim>::setup(const AffineConstraints<double> &u_constraints,
                                const IndexSet &                 owned_u,
-                               const IndexSet &                 relevant_u,
                                ConditionalOStream &             pcout)
     {
       const auto &       pairs   = parameters.contact.pairs;
@@ -503,7 +538,6 @@ namespace Signorini
           }
       }
       extra.compress();
-      (void)relevant_u;
 
       for (unsigned int p = 0; p < n_pairs; ++p)
         if (pairs[p].master == MasterType::body)
@@ -653,31 +687,23 @@ namespace Signorini
       const auto tree = pack_rtree(boxes);
 
       const auto &           contact = parameters.contact;
-      const FEValuesExtractors::Vector u(0);
-      std::unique_ptr<FEFaceValues<dim>> fe_face_values;
+      const FEFaceValues<dim> *            fe_face_values = nullptr;
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       for (auto &point : points)
         {
           const auto &face = slave_faces[point.face];
-          if (!fe_face_values || point.q == 0)
+          if (point.q == 0)
             {
-              fe_face_values = std::make_unique<FEFaceValues<dim>>(
-                fe,
-                rule->face_quadrature(point.face),
-                update_values | update_quadrature_points |
-                  update_normal_vectors | update_JxW_values);
-              fe_face_values->reinit(face.cell, face.face);
+              fe_face_values = &slave_values(point.face);
               face.cell->get_dof_indices(cell_dofs);
             }
           const unsigned int q = point.q;
           const unsigned int p = face.pair;
           point.x_ref          = fe_face_values->quadrature_point(q);
           point.weight         = fe_face_values->JxW(q);
-          Point<dim> x_e       = point.x_ref;
-          double     lambda    = 0;
-          for (const auto i : face.u_local)
-            x_e[fe.system_to_component_index(i).first] +=
-              state[cell_dofs[i]] * fe_face_values->shape_value(i, q);
+          const Point<dim> x_e =
+            slave_position(*fe_face_values, face, cell_dofs, q, state);
+          double lambda = 0;
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
             lambda += state[face.lambda_dofs[l]] *
                       fe_face_values->shape_value(face.node_local[l], q);
@@ -832,27 +858,21 @@ namespace Signorini
       auto num = writable_vector(owned_multipliers, extra, comm);
       auto den = writable_vector(owned_multipliers, extra, comm);
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-      std::unique_ptr<FEFaceValues<dim>>   fv;
+      const FEFaceValues<dim> *            fv = nullptr;
       for (const auto &point : points)
         {
           const auto &face = slave_faces[point.face];
-          if (!fv || point.q == 0)
+          if (point.q == 0)
             {
-              fv = std::make_unique<FEFaceValues<dim>>(
-                fe,
-                rule->face_quadrature(point.face),
-                update_values | update_quadrature_points | update_JxW_values);
-              fv->reinit(face.cell, face.face);
+              fv = &slave_values(point.face);
               face.cell->get_dof_indices(cell_dofs);
             }
           const unsigned int p = face.pair;
           double             g = -std::numeric_limits<double>::max();
           if (point.paired)
             {
-              Point<dim> x_e = fv->quadrature_point(point.q);
-              for (const auto i : face.u_local)
-                x_e[fe.system_to_component_index(i).first] +=
-                  state[cell_dofs[i]] * fv->shape_value(i, point.q);
+              const Point<dim> x_e =
+                slave_position(*fv, face, cell_dofs, point.q, state);
               Point<dim> x_m = point.x_m_rigid;
               if (point.master_face >= 0)
                 {
@@ -907,18 +927,14 @@ namespace Signorini
       std::vector<types::global_dof_index> dofs;
       FullMatrix<double>                   K;
       Vector<double>                       F;
-      std::unique_ptr<FEFaceValues<dim>>   fv;
+      const FEFaceValues<dim> *            fv = nullptr;
 
       for (auto &point : points)
         {
           const auto &face = slave_faces[point.face];
-          if (!fv || point.q == 0)
+          if (point.q == 0)
             {
-              fv = std::make_unique<FEFaceValues<dim>>(
-                fe,
-                rule->face_quadrature(point.face),
-                update_values | update_quadrature_points | update_JxW_values);
-              fv->reinit(face.cell, face.face);
+              fv = &slave_values(point.face);
               face.cell->get_dof_indices(cell_dofs);
             }
           const unsigned int q    = point.q;
@@ -1239,17 +1255,15 @@ namespace Signorini
         names.size() + 1,
         writable_vector(owned, relevant, comm));
 
-      std::unique_ptr<FEFaceValues<dim>> fv;
+      const FEFaceValues<dim> *            fv = nullptr;
       std::vector<types::global_dof_index> scalar_cell_dofs(
         scalar_dofs.get_fe().n_dofs_per_cell());
       for (const auto &point : points)
         {
           const auto &face = slave_faces[point.face];
-          if (!fv || point.q == 0)
+          if (point.q == 0)
             {
-              fv = std::make_unique<FEFaceValues<dim>>(
-                fe, rule->face_quadrature(point.face), update_values);
-              fv->reinit(face.cell, face.face);
+              fv = &slave_values(point.face);
               typename DoFHandler<dim>::active_cell_iterator scell(
                 &dof_handler.get_triangulation(),
                 face.cell->level(),

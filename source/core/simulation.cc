@@ -206,10 +206,7 @@ namespace Signorini
     make_constraints(0.);
     if (contact->active())
       {
-        contact->setup(constraints_update,
-                       locally_owned,
-                       locally_relevant,
-                       pcout);
+        contact->setup(constraints_update, locally_owned, pcout);
         const auto n_system = contact->n_system();
         owned_system        = IndexSet(n_system);
         owned_system.add_indices(locally_owned);
@@ -791,21 +788,7 @@ namespace Signorini
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && !found)
         {
-          const BoundingBox<dim> box(
-            std::make_pair(cell->vertex(0), cell->vertex(0)));
-          bool near = true;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              double lo = cell->vertex(0)[d], hi = lo;
-              for (const unsigned int v : cell->vertex_indices())
-                {
-                  lo = std::min(lo, cell->vertex(v)[d]);
-                  hi = std::max(hi, cell->vertex(v)[d]);
-                }
-              const double tol = 1e-10 * (hi - lo);
-              near = near && p[d] >= lo - tol && p[d] <= hi + tol;
-            }
-          if (!near)
+          if (!cell->bounding_box().point_inside(p, 1e-10))
             continue;
           Point<dim> unit;
           try

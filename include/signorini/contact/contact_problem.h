@@ -7,6 +7,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
@@ -87,7 +88,6 @@ namespace Signorini
       void
       setup(const AffineConstraints<double> &u_constraints,
             const IndexSet &                 locally_owned_u,
-            const IndexSet &                 locally_relevant_u,
             ConditionalOStream &             pcout);
 
       types::global_dof_index
@@ -278,6 +278,22 @@ namespace Signorini
       LawParameters
       law_parameters(const unsigned int pair) const;
 
+      /**
+       * Values on slave face @p f at the rule's points, reinitialised on it;
+       * the object is rebuilt only when the rule gives another quadrature
+       * (never for the fixed rules), not once per face.
+       */
+      const FEFaceValues<dim> &
+      slave_values(const unsigned int f) const;
+
+      /** Current position X + u of point @p q of slave face @p f. */
+      Point<dim>
+      slave_position(const FEFaceValues<dim> &                   values,
+                     const SlaveFace &                            face,
+                     const std::vector<types::global_dof_index> &cell_dofs,
+                     const unsigned int                           q,
+                     const TrilinosWrappers::MPI::Vector &        state) const;
+
       const Parameters &     parameters;
       const DoFHandler<dim> &dof_handler;
       const FESystem<dim> &  fe;
@@ -305,6 +321,9 @@ namespace Signorini
         master_lines;
 
       std::vector<ContactPoint> points;
+
+      mutable std::unique_ptr<FEFaceValues<dim>> face_values;
+      mutable const Quadrature<dim - 1> *        face_values_rule = nullptr;
     };
   } // namespace Contact
 } // namespace Signorini
