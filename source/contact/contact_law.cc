@@ -185,13 +185,15 @@ namespace Signorini
       const bool lambda_depends = parameters.threshold_newton;
       response.lambda_f         = lambda_f;
 
-      // Section 3.3: in contact with lambda_f == 0 exactly is treated as a
-      // free point for friction, otherwise K_ff = 0 (stick) or
+      // Section 3.3: in contact with lambda_f == 0 is treated as a free
+      // point for friction, otherwise K_ff = 0 (stick) or
       // (mu lambda_f / rho_t)(...) = 0 (slip) would make the f block
-      // singular. The comparison is exact on purpose: this is the value a
-      // point carries right after it closes (lambda or the frozen threshold
-      // still 0), any nonzero value gives a regular block.
-      response.friction_active = response.in_contact && (lambda_f != 0.);
+      // singular. This is the value a point carries right after it closes
+      // (lambda or the frozen threshold still 0); "zero" means at most
+      // zero_threshold, the round-off level of the solve that closed it.
+      response.friction_active =
+        response.in_contact &&
+        (std::abs(lambda_f) > parameters.zero_threshold);
 
       if (!response.friction_active)
         {

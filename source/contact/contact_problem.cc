@@ -156,6 +156,7 @@ namespace Signorini
       law.threshold_newton   = !parameters.contact.frozen_threshold;
       law.threshold_coupling = parameters.contact.threshold_coupling;
       law.penalty            = parameters.contact.penalty;
+      law.zero_threshold     = 1e-12 * youngs[p];
       return law;
     }
 
@@ -811,6 +812,39 @@ namespace Signorini
 
 
     template <int dim>
+    std::vector<types::global_dof_index>
+    ContactProblem<dim>::coupled_dofs() const
+    {
+      std::vector<types::global_dof_index> mine, cell_dofs(fe.n_dofs_per_cell());
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          face.cell->get_dof_indices(cell_dofs);
+          for (const auto i : face.u_local)
+            mine.push_back(cell_dofs[i]);
+          mine.insert(mine.end(),
+                      face.lambda_dofs.begin(),
+                      face.lambda_dofs.end());
+          mine.insert(mine.end(),
+                      face.friction_dofs.begin(),
+                      face.friction_dofs.end());
+          if (point.master_face >= 0)
+            {
+              const auto &d = master_faces[point.master_face].dofs;
+              mine.insert(mine.end(), d.begin(), d.end());
+            }
+        }
+      std::vector<types::global_dof_index> all;
+      for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+        all.insert(all.end(), part.begin(), part.end());
+      std::sort(all.begin(), all.end());
+      all.erase(std::unique(all.begin(), all.end()), all.end());
+      return all;
+    }
+
+
+
+    template <int dim>
     void
     ContactProblem<dim>::add_sparsity(
       TrilinosWrappers::SparsityPattern &sparsity,
@@ -886,8 +920,14 @@ namespace Signorini
               g = (x_e - x_m) * point.normal +
                   parameters.contact.pairs[p].gap_offset;
             }
-          // delta: a small pressure relative to the stiffness scale.
-          const double delta = 1e-6 * rho_n[p] * face_size[p];
+          // delta: half the zero friction threshold of the law (see
+          // law_parameters), so that lambda_aug = -/+ delta sets the normal
+          // status strictly while the friction of a point closed this way
+          // starts inactive, as for a point that has just closed
+          // (formulation.md 3.3). A larger delta would be a tiny nonzero
+          // threshold: Lambda = F_t / (mu delta) of order 1e8 at the first
+          // iterate.
+          const double delta = 0.5 * law_parameters(p).zero_threshold;
           double       target;
           if (status == InitialStatus::closed)
             target = std::min(0., rho_n[p] * std::max(g, -1e300 / rho_n[p])) -
@@ -1012,8 +1052,13 @@ namespace Signorini
             !r.in_contact ? PointStatus::free :
                             (fric && r.friction_active ? r.status :
                                                          PointStatus::slip);
-          stats.n_changed += (status != point.status);
-          point.status = status;
+          // A point that closed with a zero threshold (friction inactive,
+          // formulation.md 3.3) and one with friction on are different
+          // branches of the law even when both are labelled 'slip'.
+          stats.n_changed += (status != point.status) ||
+                             (r.friction_active != point.friction_active);
+          point.status          = status;
+          point.friction_active = r.friction_active;
           point.gap    = s.gap;
           point.lambda = s.lambda;
           point.Lambda = s.Lambda;

@@ -215,7 +215,7 @@ namespace Signorini
                       "0",
                       Patterns::Integer(0, 20),
                       "Number of refinement cycles, after the global ones, of "
-                      "the cells whose centre satisfies 'Refinement region' "
+                      "the cells that touch 'Refinement region' "
                       "(typically the contact zone). Neighbours are refined "
                       "as needed to keep one hanging node per face.");
     prm.declare_entry("Refinement region",
@@ -223,7 +223,8 @@ namespace Signorini
                       Patterns::Anything(),
                       "Expression in x, y(, z) and 'Function constants': a "
                       "cell is refined in each local cycle iff it is > 0 at "
-                      "the cell centre, e.g. '0.02 - sqrt(x^2 + y^2)'.");
+                      "the cell centre or at one of its vertices, e.g. "
+                      "'0.02 - sqrt(x^2 + y^2)'.");
     for (unsigned int b = 1; b <= counts.n_bodies; ++b)
       {
         prm.enter_subsection("Body " + std::to_string(b));
@@ -502,6 +503,15 @@ namespace Signorini
                       Patterns::Double(0),
                       "Converged when the residual norm is below this value "
                       "[N].");
+    prm.declare_entry("Check Jacobian",
+                      "false",
+                      Patterns::Bool(),
+                      "At every Newton iteration with contact, compare each "
+                      "column of the assembled contact Jacobian with central "
+                      "finite differences of the contact residual and print "
+                      "the largest relative difference (slow: two residual "
+                      "evaluations per coupled unknown; for development and "
+                      "tests).");
     prm.leave_subsection();
   }
 
@@ -513,6 +523,7 @@ namespace Signorini
     max_iterations     = prm.get_integer("Maximum iterations");
     relative_tolerance = prm.get_double("Relative tolerance");
     absolute_tolerance = prm.get_double("Absolute tolerance");
+    check_jacobian     = prm.get_bool("Check Jacobian");
     prm.leave_subsection();
   }
 

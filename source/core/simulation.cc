@@ -541,6 +541,10 @@ namespace Signorini
                                                   mpi_communicator);
               owned = state;
               contact->set_initial_multipliers(state, owned);
+              // Hanging and excluded multipliers follow their constraint
+              // lines from the start: Newton updates are distributed with
+              // homogeneous lines, so a start off the lines would stay off.
+              constraints_values.distribute(owned);
               state         = owned;
               first_pairing = false;
             }
@@ -597,7 +601,10 @@ namespace Signorini
       {
         // Residual first; the matrix only if a solve follows, so the
         // converged check does not pay for a matrix assembly.
-        if (contact->active())
+        // rho_t follows the pressure level once per Newton solve: changing
+        // it between iterates would change the equations being solved and
+        // spoil the quadratic convergence.
+        if (contact->active() && iterations == 0)
           contact->update_coefficients(state);
         assemble(false);
         double block[3] = {0, 0, 0};
@@ -650,6 +657,8 @@ namespace Signorini
                 << (converged ? "  converged" : "") << std::endl;
         if (!std::isfinite(residual))
           return false;
+        if (parameters.newton.check_jacobian && contact->active())
+          check_jacobian();
         if (converged)
           return true;
         if (iterations == parameters.newton.max_iterations)
@@ -667,6 +676,128 @@ namespace Signorini
         update_solution();
       }
     return false;
+  }
+
+
+  // Development check (Newton/Check Jacobian): every column j of the
+  // assembled contact matrix K_c against the central difference
+  // -(r(x + h e_j) - r(x - h e_j)) / 2h of the contact part r = -R_c of the
+  // right-hand side, with the pairing fixed as in Newton. Columns whose
+  // perturbation flips a status straddle a kink and are skipped (counted).
+  template <int dim>
+  void
+  Simulation<dim>::check_jacobian()
+  {
+    const types::global_dof_index n_u = dof_handler.n_dofs();
+    const types::global_dof_index n_l = contact->n_lambda_dofs();
+    TrilinosWrappers::SparseMatrix K;
+    K.reinit(system_matrix);
+    K = 0;
+    // Right-hand sides with the writable off-rank entries of newton_rhs.
+    TrilinosWrappers::MPI::Vector r0 = newton_rhs, r_plus = newton_rhs,
+                                  r_minus = newton_rhs;
+    r0 = 0;
+    TrilinosWrappers::MPI::Vector column(owned_system, mpi_communicator),
+      unit(column);
+    TrilinosWrappers::MPI::Vector force = contact_force;
+    const auto saved_statistics = contact_statistics;
+    contact->assemble(state, state_step_start, constraints_update, &K, r0,
+                      force);
+    K.compress(VectorOperation::add);
+
+    // Step sizes: 1e-6 of the block's largest magnitude
+    double scale[3] = {0, 0, 0};
+    for (const auto i : owned_system)
+      {
+        double &s = scale[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)];
+        s         = std::max(s, std::abs(state[i]));
+      }
+    // and never below a floor (1e-6 of the mesh diameter, 1e-6 of the
+    // largest Young's modulus, 1), so that a block that is zero up to
+    // round-off is not perturbed by round-off.
+    double E_max = 0;
+    for (const auto &[id, material] : materials)
+      E_max = std::max(E_max, material.youngs_modulus());
+    const double floor[3] = {1e-6 * GridTools::diameter(triangulation),
+                             1e-6 * E_max,
+                             1.};
+    for (unsigned int b = 0; b < 3; ++b)
+      scale[b] = 1e-6 * std::max(Utilities::MPI::max(scale[b], mpi_communicator),
+                                 floor[b]);
+
+    // The base state with the owned layout, copied entry by entry: an
+    // assignment between vectors of different layouts may take a
+    // collective code path on some ranks only.
+    TrilinosWrappers::MPI::Vector base(owned_system, mpi_communicator);
+    for (const auto i : owned_system)
+      base[i] = state[i];
+    base.compress(VectorOperation::insert);
+    double       worst = 0;
+    unsigned int n_checked = 0, n_kinked = 0;
+    double       block_size[3] = {0, 0, 0};
+    std::vector<std::pair<unsigned int, double>> differences;
+    const auto   evaluate  = [&](const types::global_dof_index j,
+                              const double                  delta,
+                              TrilinosWrappers::MPI::Vector &r) {
+      TrilinosWrappers::MPI::Vector owned = base;
+      if (owned_system.is_element(j))
+        owned[j] += delta;
+      owned.compress(VectorOperation::insert);
+      state = owned;
+      r     = 0;
+      const auto st = contact->assemble(
+        state, state_step_start, constraints_update, nullptr, r, force);
+      r.compress(VectorOperation::add);
+      return st.n_changed;
+    };
+    for (const auto j : contact->coupled_dofs())
+      {
+        // Each rank knows the constraint lines of its relevant DoFs only;
+        // all ranks must take the same branch (collective calls follow).
+        if (Utilities::MPI::max(constraints_update.is_constrained(j) ? 1 : 0,
+                                mpi_communicator) > 0)
+          continue;
+        const unsigned int b = j < n_u ? 0 : (j < n_u + n_l ? 1 : 2);
+        unit = 0;
+        if (owned_system.is_element(j))
+          unit[j] = 1;
+        unit.compress(VectorOperation::insert);
+        K.vmult(column, unit);
+        const double h = scale[b];
+        const unsigned int flips =
+          evaluate(j, h, r_plus) + evaluate(j, -h, r_minus);
+        if (flips > 0)
+          {
+            ++n_kinked;
+            evaluate(j, 0, r_plus); // statuses back to the base state
+            continue;
+          }
+        r_plus -= r_minus;
+        r_plus *= -1. / (2 * h); // the finite-difference column
+        block_size[b] = std::max(block_size[b], column.linfty_norm());
+        column -= r_plus;
+        differences.emplace_back(b, column.linfty_norm());
+      }
+    // Relative to the largest column of the same block (u, lambda,
+    // Lambda): a column that is zero up to round-off has a finite-
+    // difference column of pure noise, eps |r| / h, which must not count.
+    for (const auto &[b, d] : differences)
+      if (block_size[b] > 0)
+        {
+          worst = std::max(worst, d / block_size[b]);
+          ++n_checked;
+        }
+    state = base;
+    update_solution();
+    // Restore the statuses and statistics of the base state.
+    r0 = 0;
+    contact->assemble(state, state_step_start, constraints_update, nullptr, r0,
+                      force);
+    contact_statistics = saved_statistics;
+    jacobian_error_max = std::max(jacobian_error_max, worst);
+    pcout << "      Jacobian check: " << n_checked << " columns, "
+          << n_kinked << " at a kink, max relative error " << std::scientific
+          << std::setprecision(1) << worst << std::defaultfloat << std::endl;
   }
 
 
@@ -1096,6 +1227,7 @@ namespace Signorini
     const auto &times = parameters.load_stepping.step_times;
     double      t_done = 0;
     TrilinosWrappers::MPI::Vector last_converged = state;
+    bool                          none_converged = true;
     for (unsigned int step = 1; step <= times.size(); ++step)
       {
         pcout << "Load step " << step << " of " << times.size()
@@ -1110,6 +1242,7 @@ namespace Signorini
               {
                 total_iterations += iterations;
                 last_converged = state;
+                none_converged = false;
                 t_done         = t_target;
                 t_target       = times[step - 1];
               }
@@ -1117,6 +1250,10 @@ namespace Signorini
               {
                 state = last_converged;
                 update_solution();
+                // Back to the initial state: the retry needs the initial
+                // multipliers again ('Initial status').
+                if (none_converged)
+                  first_pairing = true;
                 if (++cuts > parameters.load_stepping.max_cuts)
                   throw RunError(
                     "load step " + std::to_string(step) + " did not converge "
@@ -1146,6 +1283,13 @@ namespace Signorini
             contact->write_csv(name.str());
           }
       }
+    if (parameters.newton.check_jacobian && contact->active())
+      pcout << "Jacobian check: largest relative error of the contact "
+               "Jacobian over the run = "
+            << std::scientific << std::setprecision(1) << jacobian_error_max
+            << " (tolerance 1.0e-06): "
+            << (jacobian_error_max < 1e-6 ? "PASS" : "FAIL")
+            << std::defaultfloat << std::endl;
     if (parameters.output.timing_summary)
       timer.print_wall_time_statistics(mpi_communicator);
   }

@@ -359,10 +359,18 @@ namespace Signorini
           for (unsigned int cycle = 0; cycle < geometry.local_refinements;
                ++cycle)
             {
+              // A cell touches the region if the expression is positive at
+              // its centre or at one of its vertices, so that a region
+              // smaller than the coarse cells still gets refined.
               for (const auto &cell : triangulation.active_cell_iterators())
-                if (cell->is_locally_owned() &&
-                    region.value(cell->center()) > 0)
-                  cell->set_refine_flag();
+                if (cell->is_locally_owned())
+                  {
+                    bool touches = region.value(cell->center()) > 0;
+                    for (const unsigned int v : cell->vertex_indices())
+                      touches = touches || region.value(cell->vertex(v)) > 0;
+                    if (touches)
+                      cell->set_refine_flag();
+                  }
               triangulation.execute_coarsening_and_refinement();
             }
         }

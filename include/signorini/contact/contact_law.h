@@ -62,6 +62,15 @@ namespace Signorini
       double mu;
 
       /**
+       * |lambda_f| at or below this value [Pa] counts as a zero friction
+       * threshold (section 3.3). A point that closed in the last solve has
+       * lambda_f = 0 only up to the round-off of that solve; treating that
+       * round-off as a threshold would give a Lambda block of size 1e-20.
+       * ContactProblem uses 1e-12 E. Default: exact zero.
+       */
+      double zero_threshold = 0.;
+
+      /**
        * true: lambda_f = current lambda (Newton on the threshold, section
        * 3.3, the default); false: lambda_f = PointState::lambda_f_frozen.
        */

@@ -143,11 +143,17 @@ namespace Signorini
        * Friction augmentation rho_t = c_t rho_n / (mu p_ref) per pair, with
        * p_ref the RMS of the nodal pressures -lambda of the closed slave
        * nodes in @p state (kept from the last call while no node is
-       * closed). Called before each residual evaluation, so the residual and
-       * the matrix of one Newton iteration use the same value.
+       * closed). Called once per Newton solve (its first residual), so
+       * that all iterates of one solve work on the same equations.
        */
       void
       update_coefficients(const TrilinosWrappers::MPI::Vector &state);
+
+      /** Every system index the contact terms touch with the current
+       * pairing (slave-face displacements, master-face displacements,
+       * multipliers), sorted, the same list on every rank. */
+      std::vector<types::global_dof_index>
+      coupled_dofs() const;
 
       /** Entries of the contact blocks for the current pairing. */
       void
@@ -259,6 +265,7 @@ namespace Signorini
         double         lambda_frozen = 0;
         // Last evaluation:
         PointStatus        status = PointStatus::free;
+        bool               friction_active = false; // law branch, 3.3
         Point<dim>         x_ref;
         double             weight = 0, gap = 0, lambda = 0;
         Tensor<1, dim - 1> Lambda, slip;

@@ -155,6 +155,7 @@ namespace Signorini
     unsigned int max_iterations;
     double       relative_tolerance;
     double       absolute_tolerance;
+    bool         check_jacobian;
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

@@ -90,6 +90,8 @@ namespace Signorini
     bool
     newton(unsigned int &n_iterations);
     void
+    check_jacobian();
+    void
     update_solution(); // u part of the system state -> solution
     double
     point_value(const Point<dim> &p, const unsigned int component) const;
@@ -148,6 +150,7 @@ namespace Signorini
     bool                          first_pairing = true;
     std::vector<std::string>      contact_checks; // printed after each step
     bool                          contact_checks_pass = true;
+    double                        jacobian_error_max  = 0; // Check Jacobian
 
     double                           force_scale = 0;
     std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
