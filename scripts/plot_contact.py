@@ -1,0 +1,67 @@
+"""Contact pressure of the Hertz benchmarks against the Hertz solution.
+
+Usage: plot_contact.py RUN_DIRECTORY FIGURE_DIRECTORY
+RUN_DIRECTORY holds one output directory per case (see scripts/plot). The
+reference values are those of the prm files (doc/verification.md).
+"""
+import csv
+import math
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+# case: (title, p0 [Pa], a [m], radial coordinate from a CSV row)
+CASES = {
+    "b2_hertz_2d": ("B2 Hertz 2D, elastic cylinder on block", 3.585e9, 6.21e-3,
+                    lambda r: abs(r["x"])),
+    "hertz_2d_rigid": ("Hertz 2D, cylinder on rigid plane", 5.07e9, 4.39e-3,
+                       lambda r: abs(r["x"])),
+    "hertz_3d": ("Hertz 3D, sphere on block (Gauss order 2)", 7.2827e9, 9.914e-3,
+                 lambda r: math.hypot(r["x"], r["z"])),
+}
+
+
+def last_csv(directory):
+    files = sorted(Path(directory).glob("contact_*.csv"))
+    if not files:
+        raise SystemExit(f"no contact_*.csv in {directory}")
+    with open(files[-1]) as f:
+        rows = []
+        for row in csv.DictReader(f):
+            rows.append({k: (v if k == "status" else float(v))
+                         for k, v in row.items()})
+    return rows
+
+
+def main():
+    runs, figures = Path(sys.argv[1]), Path(sys.argv[2])
+    figures.mkdir(parents=True, exist_ok=True)
+    for case, (title, p0, a, radius) in CASES.items():
+        rows = last_csv(runs / case)
+        points = sorted({(radius(r) * 1e3, r["p"] / 1e6) for r in rows
+                         if radius(r) < 2.5 * a})
+        r_exact = [2.5 * a * 1e3 * i / 400 for i in range(401)]
+        p_exact = [p0 / 1e6 * math.sqrt(max(0.0, 1 - (r / (a * 1e3)) ** 2))
+                   for r in r_exact]
+        fig, ax = plt.subplots(figsize=(6, 4))
+        ax.plot(r_exact, p_exact, "k-", label="Hertz")
+        ax.plot([p[0] for p in points], [p[1] for p in points], "o",
+                ms=4, label="Signorini (contact points)")
+        ax.set_xlabel("distance from the first contact point [mm]")
+        ax.set_ylabel("contact pressure p [MPa]")
+        ax.set_title(title)
+        ax.grid(alpha=0.3)
+        ax.legend()
+        fig.tight_layout()
+        out = figures / f"{case}_pressure.png"
+        fig.savefig(out, dpi=110)
+        plt.close(fig)
+        print("wrote", out)
+
+
+if __name__ == "__main__":
+    main()
