@@ -812,27 +812,38 @@ namespace Signorini
 
 
     template <int dim>
+    void
+    ContactProblem<dim>::point_dofs(
+      const ContactPoint &                        point,
+      const std::vector<types::global_dof_index> &cell_dofs,
+      std::vector<types::global_dof_index> &      dofs) const
+    {
+      const auto &face = slave_faces[point.face];
+      dofs.clear();
+      for (const auto i : face.u_local)
+        dofs.push_back(cell_dofs[i]);
+      if (point.master_face >= 0)
+        for (const auto d : master_faces[point.master_face].dofs)
+          dofs.push_back(d);
+      dofs.insert(dofs.end(), face.lambda_dofs.begin(), face.lambda_dofs.end());
+      dofs.insert(dofs.end(),
+                  face.friction_dofs.begin(),
+                  face.friction_dofs.end());
+    }
+
+
+
+    template <int dim>
     std::vector<types::global_dof_index>
     ContactProblem<dim>::coupled_dofs() const
     {
-      std::vector<types::global_dof_index> mine, cell_dofs(fe.n_dofs_per_cell());
+      std::vector<types::global_dof_index> mine, dofs,
+        cell_dofs(fe.n_dofs_per_cell());
       for (const auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
-          face.cell->get_dof_indices(cell_dofs);
-          for (const auto i : face.u_local)
-            mine.push_back(cell_dofs[i]);
-          mine.insert(mine.end(),
-                      face.lambda_dofs.begin(),
-                      face.lambda_dofs.end());
-          mine.insert(mine.end(),
-                      face.friction_dofs.begin(),
-                      face.friction_dofs.end());
-          if (point.master_face >= 0)
-            {
-              const auto &d = master_faces[point.master_face].dofs;
-              mine.insert(mine.end(), d.begin(), d.end());
-            }
+          slave_faces[point.face].cell->get_dof_indices(cell_dofs);
+          point_dofs(point, cell_dofs, dofs);
+          mine.insert(mine.end(), dofs.begin(), dofs.end());
         }
       std::vector<types::global_dof_index> all;
       for (const auto &part : Utilities::MPI::all_gather(comm, mine))
@@ -861,18 +872,7 @@ namespace Signorini
               face.cell->get_dof_indices(cell_dofs);
               last_face = point.face;
             }
-          dofs.clear();
-          for (const auto i : face.u_local)
-            dofs.push_back(cell_dofs[i]);
-          if (point.master_face >= 0)
-            for (const auto d : master_faces[point.master_face].dofs)
-              dofs.push_back(d);
-          dofs.insert(dofs.end(),
-                      face.lambda_dofs.begin(),
-                      face.lambda_dofs.end());
-          dofs.insert(dofs.end(),
-                      face.friction_dofs.begin(),
-                      face.friction_dofs.end());
+          point_dofs(point, cell_dofs, dofs);
           constraints.add_entries_local_to_global(dofs, sparsity, false);
         }
     }
@@ -1068,17 +1068,10 @@ namespace Signorini
 
           // Local dofs: e | m | lambda | Lambda.
           const unsigned int n_f = fric ? n_l * (dim - 1) : 0;
-          const unsigned int o_m = n_e, o_c = n_e + n_m, o_f = o_c + n_l;
+          const unsigned int o_c = n_e + n_m, o_f = o_c + n_l;
           const unsigned int n   = o_f + n_f;
-          dofs.resize(n);
-          for (unsigned int a = 0; a < n_e; ++a)
-            dofs[a] = cell_dofs[face.u_local[a]];
-          for (unsigned int b = 0; b < n_m; ++b)
-            dofs[o_m + b] = master->dofs[b];
-          for (unsigned int l = 0; l < n_l; ++l)
-            dofs[o_c + l] = face.lambda_dofs[l];
-          for (unsigned int b = 0; b < n_f; ++b)
-            dofs[o_f + b] = face.friction_dofs[b];
+          point_dofs(point, cell_dofs, dofs);
+          AssertDimension(dofs.size(), n);
 
           // Shape value and component of each displacement column, with the
           // sign of d = u^e - u^m.

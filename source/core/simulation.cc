@@ -787,9 +787,9 @@ namespace Signorini
           worst = std::max(worst, d / block_size[b]);
           ++n_checked;
         }
+    // The displacement part 'solution' was never touched; restore the
+    // state and the statuses and statistics of the base state.
     state = base;
-    update_solution();
-    // Restore the statuses and statistics of the base state.
     r0 = 0;
     contact->assemble(state, state_step_start, constraints_update, nullptr, r0,
                       force);

@@ -293,6 +293,15 @@ namespace Signorini
       const FEFaceValues<dim> &
       slave_values(const unsigned int f) const;
 
+      /** System indices of the local unknowns of @p point in the order
+       * e | m | lambda | Lambda (slave face displacements, master face
+       * displacements, multipliers) used by assembly and sparsity;
+       * @p cell_dofs are the DoFs of the slave face's cell. */
+      void
+      point_dofs(const ContactPoint &                        point,
+                 const std::vector<types::global_dof_index> &cell_dofs,
+                 std::vector<types::global_dof_index> &      dofs) const;
+
       /** Current position X + u of point @p q of slave face @p f. */
       Point<dim>
       slave_position(const FEFaceValues<dim> &                   values,
