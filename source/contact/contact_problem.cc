@@ -8,6 +8,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <signorini/contact/contact_problem.h>
+#include <signorini/contact/segmentation.h>
 
 #include <algorithm>
 #include <cmath>
@@ -87,9 +88,17 @@ namespace Signorini
       , face_fe(parameters.fe_degree)
     {
       const auto &contact = parameters.contact;
-      rule                = std::make_unique<FixedRule<dim>>(contact.rule,
-                                                  contact.order,
-                                                  parameters.fe_degree);
+      mortar = contact.rule == IntegrationRule::mortar;
+      segment_order =
+        contact.segment_order > 0 ?
+          contact.segment_order :
+          exact_segment_order<dim>(parameters.fe_degree);
+      rule = mortar ? std::make_unique<FixedRule<dim>>(IntegrationRule::gauss,
+                                                       segment_order,
+                                                       parameters.fe_degree) :
+                      std::make_unique<FixedRule<dim>>(contact.rule,
+                                                       contact.order,
+                                                       parameters.fe_degree);
       for (unsigned int p = 0; p < contact.pairs.size(); ++p)
         {
           const auto &pair = contact.pairs[p];
@@ -162,37 +171,41 @@ namespace Signorini
 
 
     template <int dim>
-    const FEFaceValues<dim> &
-    ContactProblem<dim>::slave_values(const unsigned int f) const
+    typename ContactProblem<dim>::ContactPoint
+    ContactProblem<dim>::make_point(const unsigned int    f,
+                                    const unsigned int    q,
+                                    const Point<dim - 1> &xi,
+                                    const double          w) const
     {
-      const Quadrature<dim - 1> &quadrature = rule->face_quadrature(f);
-      if (!face_values || face_values_rule != &quadrature)
-        {
-          face_values = std::make_unique<FEFaceValues<dim>>(
-            fe,
-            quadrature,
-            update_values | update_quadrature_points | update_normal_vectors |
-              update_JxW_values);
-          face_values_rule = &quadrature;
-        }
-      face_values->reinit(slave_faces[f].cell, slave_faces[f].face);
-      return *face_values;
+      const auto & face = slave_faces[f];
+      ContactPoint point;
+      point.face = f;
+      point.q    = q;
+      point.xi   = xi;
+      point.psi.resize(face.node_local.size());
+      for (unsigned int k = 0; k < face.X.size(); ++k)
+        point.psi[face.k_node[k]] = face_fe.shape_value(k, xi);
+      const auto geometry = face_geometry<dim>(face.X, xi);
+      point.x_ref         = geometry.x;
+      point.weight        = w * geometry.jacobian;
+      point.slave_normal  = geometry.normal * face.outward_normal > 0 ?
+                              geometry.normal :
+                              -geometry.normal;
+      return point;
     }
 
 
     template <int dim>
     Point<dim>
     ContactProblem<dim>::slave_position(
-      const FEFaceValues<dim> &                   values,
-      const SlaveFace &                           face,
-      const std::vector<types::global_dof_index> &cell_dofs,
-      const unsigned int                          q,
-      const TrilinosWrappers::MPI::Vector &       state) const
+      const ContactPoint &                 point,
+      const TrilinosWrappers::MPI::Vector &state) const
     {
-      Point<dim> x = values.quadrature_point(q);
-      for (const auto i : face.u_local)
-        x[fe.system_to_component_index(i).first] +=
-          state[cell_dofs[i]] * values.shape_value(i, q);
+      const auto &face = slave_faces[point.face];
+      Point<dim>  x    = point.x_ref;
+      for (unsigned int l = 0; l < point.psi.size(); ++l)
+        for (unsigned int c = 0; c < dim; ++c)
+          x[c] += point.psi[l] * state[face.node_dofs[l * dim + c]];
       return x;
     }
 
@@ -284,6 +297,45 @@ namespace Signorini
                           node.normals.push_back(face.outward_normal);
                           node.pair = p;
                         }
+                    // The face map in FE_Q<dim-1> order (as the master
+                    // faces) and the links to node_local / u_local.
+                    face.X.resize(n_face_nodes);
+                    face.k_node.resize(n_face_nodes);
+                    for (unsigned int i = 0; i < fe.n_dofs_per_face(); ++i)
+                      {
+                        const auto [c, k] = fe.face_system_to_component_index(i);
+                        if (c != 0)
+                          continue;
+                        const unsigned int cell_i = fe.face_to_cell_index(
+                          i,
+                          f,
+                          cell->face_orientation(f),
+                          cell->face_flip(f),
+                          cell->face_rotation(f));
+                        face.X[k] = mapping.transform_unit_to_real_cell(
+                          cell, fe.unit_support_point(cell_i));
+                        face.k_node[k] = std::find(face.node_local.begin(),
+                                                   face.node_local.end(),
+                                                   cell_i) -
+                                         face.node_local.begin();
+                      }
+                    face.node_dofs.resize(face.node_local.size() * dim);
+                    for (unsigned int l = 0; l < face.node_local.size(); ++l)
+                      for (unsigned int c = 0; c < dim; ++c)
+                        face.node_dofs[l * dim + c] =
+                          cell_dofs[fe.component_to_system_index(
+                            c,
+                            fe.system_to_component_index(face.node_local[l])
+                              .second)];
+                    for (const auto i : face.u_local)
+                      {
+                        const auto ci = fe.system_to_component_index(i);
+                        face.u_comp.push_back(ci.first);
+                        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+                          if (fe.system_to_component_index(face.node_local[l])
+                                .second == ci.second)
+                            face.u_node.push_back(l);
+                      }
                     if (cell->is_locally_owned())
                       {
                         h_sum[p] += cell->face(f)->diameter();
@@ -553,21 +605,28 @@ namespace Signorini
                                "mesh has (see 'Boundary ids' of the bodies).");
           }
 
-      // Contact points: the rule's points on every owned slave face.
+      // Contact points: the rule's points on every owned slave face (the
+      // mortar rule cuts the faces of meshed pairs at every pairing).
       points.clear();
       for (unsigned int f = 0; f < slave_faces.size(); ++f)
-        for (unsigned int q = 0; q < rule->face_quadrature(f).size(); ++q)
-          {
-            ContactPoint point;
-            point.face = f;
-            point.q    = q;
-            points.push_back(point);
-          }
+        {
+          const auto &quadrature = rule->face_quadrature(f);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            points.push_back(
+              make_point(f, q, quadrature.point(q), quadrature.weight(q)));
+        }
 
       const unsigned int n_points_total =
         Utilities::MPI::sum(static_cast<unsigned int>(points.size()), comm);
-      pcout << "Contact: " << n_pairs << " pair(s), rule " << rule->name()
-            << ", " << n_points_total << " contact points on "
+      pcout << "Contact: " << n_pairs << " pair(s), rule ";
+      if (mortar)
+        pcout << "mortar (segment-based, " << segment_order
+              << (dim == 2 ? " Gauss points per segment" :
+                             " points per direction on each triangle")
+              << ")";
+      else
+        pcout << rule->name() << ", " << n_points_total << " contact points";
+      pcout << " on "
             << Utilities::MPI::sum(static_cast<unsigned int>(
                                      slave_faces.size()),
                                    comm)
@@ -687,27 +746,18 @@ namespace Signorini
         }
       const auto tree = pack_rtree(boxes);
 
-      const auto &           contact = parameters.contact;
-      const FEFaceValues<dim> *            fe_face_values = nullptr;
-      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      if (mortar)
+        segment(state, x_master, tree);
+
+      const auto &contact = parameters.contact;
       for (auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
-          if (point.q == 0)
-            {
-              fe_face_values = &slave_values(point.face);
-              face.cell->get_dof_indices(cell_dofs);
-            }
-          const unsigned int q = point.q;
-          const unsigned int p = face.pair;
-          point.x_ref          = fe_face_values->quadrature_point(q);
-          point.weight         = fe_face_values->JxW(q);
-          const Point<dim> x_e =
-            slave_position(*fe_face_values, face, cell_dofs, q, state);
-          double lambda = 0;
+          const auto &       face = slave_faces[point.face];
+          const unsigned int p    = face.pair;
+          const Point<dim>   x_e  = slave_position(point, state);
+          double             lambda = 0;
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
-            lambda += state[face.lambda_dofs[l]] *
-                      fe_face_values->shape_value(face.node_local[l], q);
+            lambda += state[face.lambda_dofs[l]] * point.psi[l];
           point.lambda_frozen = lambda;
 
           point.paired      = false;
@@ -720,7 +770,23 @@ namespace Signorini
               point.x_m_rigid       = projection.x_m;
               point.rigid_increment = rigid_increment[p];
             }
-          else
+          else if (const int m = point.segment_master; m >= 0)
+            {
+              // Mortar: the master face of the point's piece (the search
+              // below only if the projection leaves that face).
+              const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
+              if (proj.converged &&
+                  proj.violation <= contact.projection_tolerance)
+                {
+                  point.paired      = true;
+                  point.master_face = m;
+                  point.normal      = proj.normal;
+                  point.N_m.resize(n_face_nodes);
+                  for (unsigned int k = 0; k < n_face_nodes; ++k)
+                    point.N_m[k] = face_fe.shape_value(k, proj.xi);
+                }
+            }
+          if (!obstacles[p] && !point.paired)
             {
               BoundingBox<dim> query(std::make_pair(x_e, x_e));
               query.extend(0.5 * face_size[p]);
@@ -773,16 +839,98 @@ namespace Signorini
                 }
             }
           if (!point.paired)
-            point.normal = -fe_face_values->normal_vector(q);
+            point.normal = -point.slave_normal;
           // Normal choice (nodal rule only, checked at input).
           if (contact.normal == NormalChoice::slave)
-            point.normal = -fe_face_values->normal_vector(q);
+            point.normal = -point.slave_normal;
           else if (contact.normal == NormalChoice::average && point.paired)
             {
-              point.normal -= fe_face_values->normal_vector(q);
+              point.normal -= point.slave_normal;
               point.normal /= point.normal.norm();
             }
           point.tangents = tangent_basis<dim>(point.normal);
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::segment(
+      const TrilinosWrappers::MPI::Vector &                   state,
+      const std::vector<std::vector<Point<dim>>> &           x_master,
+      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    {
+      std::vector<ContactPoint> old_points;
+      old_points.swap(points);
+      unsigned int next_old = 0;
+      n_pieces              = 0;
+      std::vector<Point<dim>>                       x_slave;
+      std::vector<const std::vector<Point<dim>> *> candidates;
+      std::vector<unsigned int>                     candidate_face;
+      for (unsigned int f = 0; f < slave_faces.size(); ++f)
+        {
+          const auto &       face = slave_faces[f];
+          const unsigned int p    = face.pair;
+          const std::size_t  first_new = points.size();
+          if (obstacles[p])
+            {
+              // Analytic master: nothing to cut, Gauss on the whole face.
+              const auto &quadrature = rule->face_quadrature(f);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                points.push_back(
+                  make_point(f, q, quadrature.point(q), quadrature.weight(q)));
+            }
+          else
+            {
+              x_slave = face.X;
+              for (unsigned int k = 0; k < x_slave.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  x_slave[k][c] +=
+                    state[face.node_dofs[face.k_node[k] * dim + c]];
+              BoundingBox<dim> box(x_slave);
+              box.extend(0.5 * face_size[p]);
+              std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+              tree.query(boost::geometry::index::intersects(box),
+                         std::back_inserter(hits));
+              candidates.clear();
+              candidate_face.clear();
+              for (const auto &hit : hits)
+                if (master_faces[hit.second].pair == p)
+                  {
+                    candidates.push_back(&x_master[hit.second]);
+                    candidate_face.push_back(hit.second);
+                  }
+              const auto cut =
+                segment_slave_face<dim>(x_slave, candidates, segment_order);
+              n_pieces += cut.n_pieces;
+              for (unsigned int q = 0; q < cut.points.size(); ++q)
+                {
+                  points.push_back(
+                    make_point(f, q, cut.points[q], cut.weights[q]));
+                  points.back().segment_master =
+                    cut.master[q] >= 0 ? candidate_face[cut.master[q]] : -1;
+                }
+            }
+          // Statuses carried over from the nearest old point of the face,
+          // so that an unchanged contact state counts no change.
+          while (next_old < old_points.size() &&
+                 old_points[next_old].face < f)
+            ++next_old;
+          for (std::size_t i = first_new; i < points.size(); ++i)
+            {
+              double best = std::numeric_limits<double>::max();
+              for (std::size_t j = next_old;
+                   j < old_points.size() && old_points[j].face == f;
+                   ++j)
+                if (const double d2 =
+                      (old_points[j].xi - points[i].xi).norm_square();
+                    d2 < best)
+                  {
+                    best                     = d2;
+                    points[i].status         = old_points[j].status;
+                    points[i].friction_active = old_points[j].friction_active;
+                  }
+            }
         }
     }
 
@@ -794,8 +942,12 @@ namespace Signorini
     {
       const auto &       pairs = parameters.contact.pairs;
       std::vector<double> sum2(pairs.size(), 0.), count(pairs.size(), 0.);
+      // Pressures at or below the zero threshold (e.g. the 'closed'
+      // initial multipliers, see set_initial_multipliers) are not a
+      // pressure level: they would make rho_t enormous.
       for (const auto &[dof0, node] : nodes)
-        if (owned_multipliers.is_element(node.lambda) && state[node.lambda] < 0)
+        if (owned_multipliers.is_element(node.lambda) &&
+            state[node.lambda] < -law_parameters(node.pair).zero_threshold)
           {
             sum2[node.pair] += state[node.lambda] * state[node.lambda];
             count[node.pair] += 1;
@@ -891,22 +1043,14 @@ namespace Signorini
       // psi-weighted average over the node's points.
       auto num = writable_vector(owned_multipliers, extra, comm);
       auto den = writable_vector(owned_multipliers, extra, comm);
-      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-      const FEFaceValues<dim> *            fv = nullptr;
       for (const auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
-          if (point.q == 0)
-            {
-              fv = &slave_values(point.face);
-              face.cell->get_dof_indices(cell_dofs);
-            }
-          const unsigned int p = face.pair;
-          double             g = -std::numeric_limits<double>::max();
+          const auto &       face = slave_faces[point.face];
+          const unsigned int p    = face.pair;
+          double             g    = -std::numeric_limits<double>::max();
           if (point.paired)
             {
-              const Point<dim> x_e =
-                slave_position(*fv, face, cell_dofs, point.q, state);
+              const Point<dim> x_e = slave_position(point, state);
               Point<dim> x_m = point.x_m_rigid;
               if (point.master_face >= 0)
                 {
@@ -938,8 +1082,7 @@ namespace Signorini
             continue;
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
             {
-              const double w =
-                point.weight * fv->shape_value(face.node_local[l], point.q);
+              const double w = point.weight * point.psi[l];
               add_entry(num, face.lambda_dofs[l], w * target);
               add_entry(den, face.lambda_dofs[l], w);
             }
@@ -967,17 +1110,12 @@ namespace Signorini
       std::vector<types::global_dof_index> dofs;
       FullMatrix<double>                   K;
       Vector<double>                       F;
-      const FEFaceValues<dim> *            fv = nullptr;
 
       for (auto &point : points)
         {
           const auto &face = slave_faces[point.face];
           if (point.q == 0)
-            {
-              fv = &slave_values(point.face);
-              face.cell->get_dof_indices(cell_dofs);
-            }
-          const unsigned int q    = point.q;
+            face.cell->get_dof_indices(cell_dofs);
           const unsigned int p    = face.pair;
           const auto         law  = law_parameters(p);
           const bool         fric = law.mu > 0;
@@ -985,14 +1123,15 @@ namespace Signorini
           // Point state (formulation.md 2).
           const unsigned int n_e = face.u_local.size();
           const unsigned int n_l = face.node_local.size();
-          std::vector<double> N_e(n_e), psi(n_l);
-          Point<dim>          x_e = fv->quadrature_point(q);
-          Tensor<1, dim>      du_e;
+          const std::vector<double> &psi = point.psi;
+          std::vector<double>        N_e(n_e);
+          Point<dim>                 x_e = point.x_ref;
+          Tensor<1, dim>             du_e;
           for (unsigned int a = 0; a < n_e; ++a)
             {
               const unsigned int i = face.u_local[a];
-              const unsigned int c = fe.system_to_component_index(i).first;
-              N_e[a]               = fv->shape_value(i, q);
+              const unsigned int c = face.u_comp[a];
+              N_e[a]               = psi[face.u_node[a]];
               x_e[c] += N_e[a] * state[cell_dofs[i]];
               du_e[c] += N_e[a] * (state[cell_dofs[i]] - start[cell_dofs[i]]);
             }
@@ -1000,7 +1139,6 @@ namespace Signorini
           s.lambda = 0;
           for (unsigned int l = 0; l < n_l; ++l)
             {
-              psi[l] = fv->shape_value(face.node_local[l], q);
               s.lambda += psi[l] * state[face.lambda_dofs[l]];
               if (fric)
                 for (unsigned int k = 0; k < dim - 1; ++k)
@@ -1080,7 +1218,7 @@ namespace Signorini
           for (unsigned int a = 0; a < n_e; ++a)
             {
               Nd[a]   = N_e[a];
-              comp[a] = fe.system_to_component_index(face.u_local[a]).first;
+              comp[a] = face.u_comp[a];
             }
           for (unsigned int b = 0; b < n_m; ++b)
             {
@@ -1293,7 +1431,6 @@ namespace Signorini
         names.size() + 1,
         writable_vector(owned, relevant, comm));
 
-      const FEFaceValues<dim> *            fv = nullptr;
       std::vector<types::global_dof_index> scalar_cell_dofs(
         scalar_dofs.get_fe().n_dofs_per_cell());
       for (const auto &point : points)
@@ -1301,7 +1438,6 @@ namespace Signorini
           const auto &face = slave_faces[point.face];
           if (point.q == 0)
             {
-              fv = &slave_values(point.face);
               typename DoFHandler<dim>::active_cell_iterator scell(
                 &dof_handler.get_triangulation(),
                 face.cell->level(),
@@ -1321,7 +1457,7 @@ namespace Signorini
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
             {
               const unsigned int i = face.node_local[l];
-              const double w = point.weight * fv->shape_value(i, point.q);
+              const double w = point.weight * point.psi[l];
               const auto   d =
                 scalar_cell_dofs[fe.system_to_component_index(i).second];
               for (unsigned int v = 0; v < values.size(); ++v)

@@ -62,6 +62,11 @@ namespace Signorini
             quadrature  = newton_cotes<dim - 1>(order);
             description = "newton-cotes (degree " + std::to_string(order) + ")";
             break;
+          case IntegrationRule::mortar:
+            // Segment-based: built per face at every pairing by
+            // ContactProblem (segmentation.h), not a fixed rule.
+            Assert(false, ExcInternalError());
+            break;
         }
     }
 

@@ -202,6 +202,71 @@ namespace Signorini
     }
 
 
+    template <int dim>
+    FaceGeometry<dim>
+    face_geometry(const std::vector<Point<dim>> &face_points,
+                  const Point<dim - 1> &         xi)
+    {
+      const FaceMapValues<dim> v =
+        evaluate_face_map(face_element<dim>(face_points.size()),
+                          face_points,
+                          xi);
+      FaceGeometry<dim> g;
+      g.x        = v.x;
+      g.tangents = v.a;
+      if constexpr (dim == 2)
+        g.jacobian = v.a[0].norm();
+      else
+        g.jacobian = cross_product_3d(v.a[0], v.a[1]).norm();
+      g.normal = unit_normal<dim>(v.a);
+      return g;
+    }
+
+
+    template <int dim>
+    LineIntersection<dim>
+    intersect_line_with_face(const std::vector<Point<dim>> &face_points,
+                             const Point<dim> &             p,
+                             const Tensor<1, dim> &         d)
+    {
+      const FE_Q<dim - 1> &fe = face_element<dim>(face_points.size());
+      LineIntersection<dim> result;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        result.xi[k] = 0.5;
+      // F(xi, t) = x(xi) - p - t d; columns of dF: a_0 (, a_1), -d.
+      for (unsigned int it = 0; it < 30; ++it)
+        {
+          const FaceMapValues<dim> v = evaluate_face_map(fe, face_points, result.xi);
+          const Tensor<1, dim>     F = v.x - p - result.t * d;
+          Tensor<2, dim>           J;
+          for (unsigned int r = 0; r < dim; ++r)
+            {
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                J[r][k] = v.a[k][r];
+              J[r][dim - 1] = -d[r];
+            }
+          const double det = determinant(J);
+          if (!(std::abs(det) > 1e-14 * std::pow(d.norm(), dim) *
+                                  std::pow(v.a[0].norm() + 1e-300, dim - 1)))
+            return result; // line parallel to the face
+          const Tensor<1, dim> step = -(invert(J) * F);
+          double               step_max = 0.;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              result.xi[k] += step[k];
+              step_max = std::max(step_max, std::abs(step[k]));
+            }
+          result.t += step[dim - 1];
+          if (step_max < 1e-13)
+            {
+              result.converged = true;
+              break;
+            }
+        }
+      return result;
+    }
+
+
     // ------------------------------------------------------------ rigid
 
     template <int dim>
@@ -347,6 +412,12 @@ namespace Signorini
     const Point<dim> &,                                                    \
     const double,                                                          \
     const unsigned int);                                                   \
+  template LineIntersection<dim> intersect_line_with_face<dim>(           \
+    const std::vector<Point<dim>> &,                                       \
+    const Point<dim> &,                                                    \
+    const Tensor<1, dim> &);                                               \
+  template FaceGeometry<dim> face_geometry<dim>(                          \
+    const std::vector<Point<dim>> &, const Point<dim - 1> &);              \
   template class RigidObstacle<dim>;                                       \
   template class RigidPlane<dim>;                                          \
   template class RigidSphere<dim>;                                         \

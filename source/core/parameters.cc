@@ -742,18 +742,31 @@ namespace Signorini
                       "contact.");
     prm.declare_entry("Integration rule",
                       "nodal",
-                      Patterns::Selection("nodal|gauss|simpson|newton-cotes"),
+                      Patterns::Selection(
+                        "nodal|gauss|simpson|newton-cotes|mortar"),
                       "Contact points on the slave faces (formulation.md 6): "
                       "nodal (the face nodes: trapezoid for Q1, Simpson for "
                       "Q2), gauss (Gauss-Legendre with 'Integration order' "
                       "points per direction), simpson (composite Simpson "
                       "with 'Integration order' panels per direction), "
                       "newton-cotes (closed Newton-Cotes of degree "
-                      "'Integration order' = 1, 2, 4 or 6).");
+                      "'Integration order' = 1, 2, 4 or 6), mortar "
+                      "(segment-based: each slave face cut by the master "
+                      "faces it overlaps, 'Segment order' points on every "
+                      "piece; passes the contact patch test on non-matching "
+                      "meshes).");
     prm.declare_entry("Integration order",
                       "2",
                       Patterns::Integer(1, 12),
                       "Order of the gauss, simpson or newton-cotes rule.");
+    prm.declare_entry("Segment order",
+                      "0",
+                      Patterns::Integer(0, 7),
+                      "Mortar rule: Gauss points per segment (2D) or points "
+                      "per direction of the triangle rule (3D), exact to "
+                      "degree 2n-1. 0: the smallest order that integrates "
+                      "psi x N^m exactly on flat faces (2D: degree+1, 3D: "
+                      "2 degree+1).");
     prm.declare_entry("Normal",
                       "master",
                       Patterns::Selection("master|slave|average"),
@@ -822,8 +835,10 @@ namespace Signorini
     rule  = r == "nodal"   ? IntegrationRule::nodal :
             r == "gauss"   ? IntegrationRule::gauss :
             r == "simpson" ? IntegrationRule::simpson :
+            r == "mortar"  ? IntegrationRule::mortar :
                              IntegrationRule::newton_cotes;
-    order = prm.get_integer("Integration order");
+    order         = prm.get_integer("Integration order");
+    segment_order = prm.get_integer("Segment order");
     const std::string n = prm.get("Normal");
     normal = n == "master" ? NormalChoice::master :
              n == "slave"  ? NormalChoice::slave :

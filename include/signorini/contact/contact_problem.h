@@ -3,6 +3,7 @@
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
@@ -12,6 +13,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/numerics/rtree.h>
 
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/integration_rule.h>
@@ -141,7 +143,7 @@ namespace Signorini
 
       /**
        * Friction augmentation rho_t = c_t rho_n / (mu p_ref) per pair, with
-       * p_ref the RMS of the nodal pressures -lambda of the closed slave
+       * p_ref the RMS of the nodal pressures -lambda above the zero threshold
        * nodes in @p state (kept from the last call while no node is
        * closed). Called once per Newton solve (its first residual), so
        * that all iterates of one solve work on the same equations.
@@ -241,6 +243,13 @@ namespace Signorini
         std::vector<types::global_dof_index> lambda_dofs;
         std::vector<types::global_dof_index> friction_dofs; // node-major
         Tensor<1, dim>                       outward_normal; // at centre
+        // The face map: reference node positions in FE_Q<dim-1> order
+        // (as for master faces); k_node[k] = l, the node_local index of
+        // face node k; u_node[a], u_comp[a]: node and component of u_local[a];
+        // node_dofs[l * dim + c]: displacement DoF of node l, component c.
+        std::vector<Point<dim>>              X;
+        std::vector<unsigned int>            k_node, u_node, u_comp;
+        std::vector<types::global_dof_index> node_dofs;
       };
 
       struct MasterFace
@@ -254,7 +263,16 @@ namespace Signorini
       struct ContactPoint
       {
         unsigned int   face; // index into slave_faces
-        unsigned int   q;
+        unsigned int   q;    // index among the face's points
+        // Slave data, fixed for the point's lifetime: position xi on the
+        // unit face, psi_l(xi) in node_local order, reference position,
+        // weight (rule weight x reference Jacobian) and outward normal.
+        Point<dim - 1>      xi;
+        std::vector<double> psi;
+        Point<dim>          x_ref;
+        double              weight = 0;
+        Tensor<1, dim>      slave_normal;
+        int segment_master = -1; // mortar: master face of the point's piece
         bool           paired      = false;
         int            master_face = -1; // -1: rigid or unpaired
         std::vector<double> N_m;         // master shape values at xi
@@ -266,8 +284,7 @@ namespace Signorini
         // Last evaluation:
         PointStatus        status = PointStatus::free;
         bool               friction_active = false; // law branch, 3.3
-        Point<dim>         x_ref;
-        double             weight = 0, gap = 0, lambda = 0;
+        double             gap = 0, lambda = 0;
         Tensor<1, dim - 1> Lambda, slip;
         Tensor<1, dim>     force;
       };
@@ -285,13 +302,24 @@ namespace Signorini
       LawParameters
       law_parameters(const unsigned int pair) const;
 
+      /** A contact point of slave face @p f at @p xi with rule weight
+       * @p w on the unit face (shape values, position, weight, normal). */
+      ContactPoint
+      make_point(const unsigned int    f,
+                 const unsigned int    q,
+                 const Point<dim - 1> &xi,
+                 const double          w) const;
+
       /**
-       * Values on slave face @p f at the rule's points, reinitialised on it;
-       * the object is rebuilt only when the rule gives another quadrature
-       * (never for the fixed rules), not once per face.
+       * Mortar rule: cuts every slave face of a meshed pair by the master
+       * faces at their current positions @p x_master (formulation.md 6)
+       * and rebuilds the contact points; a new point takes the last status
+       * of the nearest old point of its face.
        */
-      const FEFaceValues<dim> &
-      slave_values(const unsigned int f) const;
+      void
+      segment(const TrilinosWrappers::MPI::Vector &                  state,
+              const std::vector<std::vector<Point<dim>>> &          x_master,
+              const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
 
       /** System indices of the local unknowns of @p point in the order
        * e | m | lambda | Lambda (slave face displacements, master face
@@ -302,13 +330,10 @@ namespace Signorini
                  const std::vector<types::global_dof_index> &cell_dofs,
                  std::vector<types::global_dof_index> &      dofs) const;
 
-      /** Current position X + u of point @p q of slave face @p f. */
+      /** Current position X + u of a contact point. */
       Point<dim>
-      slave_position(const FEFaceValues<dim> &                   values,
-                     const SlaveFace &                            face,
-                     const std::vector<types::global_dof_index> &cell_dofs,
-                     const unsigned int                           q,
-                     const TrilinosWrappers::MPI::Vector &        state) const;
+      slave_position(const ContactPoint &                 point,
+                     const TrilinosWrappers::MPI::Vector &state) const;
 
       const Parameters &     parameters;
       const DoFHandler<dim> &dof_handler;
@@ -318,13 +343,18 @@ namespace Signorini
       MPI_Comm comm;
       FE_Q<dim - 1> face_fe; // master face parametrisation
 
+      // The fixed rule; with the mortar rule, Gauss of the segment order
+      // for the faces of rigid pairs (analytic master: nothing to cut).
       std::unique_ptr<SlaveRule<dim>>                  rule;
+      bool                                             mortar = false;
+      unsigned int                                     segment_order = 0;
       std::vector<std::unique_ptr<RigidObstacle<dim>>> obstacles; // per pair
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
       std::vector<double> rho_n, rho_t, face_size, youngs;         // per pair
 
       types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;
       unsigned int            n_nodes_total = 0;
+      unsigned int            n_pieces      = 0; // mortar pieces (owned faces)
       IndexSet                owned_multipliers, extra;
 
       std::map<types::global_dof_index, NodeInfo> nodes; // key: x-dof
@@ -338,8 +368,6 @@ namespace Signorini
 
       std::vector<ContactPoint> points;
 
-      mutable std::unique_ptr<FEFaceValues<dim>> face_values;
-      mutable const Quadrature<dim - 1> *        face_values_rule = nullptr;
     };
   } // namespace Contact
 } // namespace Signorini

@@ -12,9 +12,10 @@
  * gives, for one slave face, the points xi^e on the unit face and their
  * weights; the contact assembly evaluates the per-point law there. The fixed
  * rules (nodal, Gauss, Simpson, Newton-Cotes) return the same quadrature for
- * every face. A segment-based (mortar) rule depends on the master faces a
- * slave face overlaps; it derives from SlaveRule and overrides
- * face_quadrature() without touching the law or the assembly.
+ * every face. The segment-based (mortar) rule depends on the master faces a
+ * slave face overlaps at the current pairing: ContactProblem::segment
+ * rebuilds the contact points of every face from segment_slave_face
+ * (segmentation.h) and the law and the assembly are unchanged.
  */
 namespace Signorini
 {

@@ -114,6 +114,46 @@ namespace Signorini
 
 
     /**
+     * Where the straight line p + t d meets a face (mortar segmentation,
+     * formulation.md section 6): solves x(xi) = p + t d for (xi, t) by
+     * Newton from the face centre; x(xi) is the face map of
+     * project_onto_face (same node order). xi is not clamped.
+     */
+    template <int dim>
+    struct LineIntersection
+    {
+      Point<dim - 1> xi;
+      double         t         = 0.;
+      bool           converged = false;
+    };
+
+    template <int dim>
+    LineIntersection<dim>
+    intersect_line_with_face(const std::vector<Point<dim>> &face_points,
+                             const Point<dim> &             p,
+                             const Tensor<1, dim> &         d);
+
+    /**
+     * Position, covariant tangents dx/dxi_k and unit normal (not oriented:
+     * the right-handed a_0 x a_1 in 3D, a_0 turned clockwise in 2D) of a
+     * face map at xi; node order as for project_onto_face.
+     */
+    template <int dim>
+    struct FaceGeometry
+    {
+      Point<dim>                          x;
+      std::array<Tensor<1, dim>, dim - 1> tangents;
+      Tensor<1, dim>                      normal;
+      double                              jacobian = 0.; // |a_0| or |a_0 x a_1|
+    };
+
+    template <int dim>
+    FaceGeometry<dim>
+    face_geometry(const std::vector<Point<dim>> &face_points,
+                  const Point<dim - 1> &         xi);
+
+
+    /**
      * Closest point, normal and gap of a point with respect to an analytic
      * rigid master surface (formulation.md section 2).
      */

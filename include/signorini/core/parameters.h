@@ -256,7 +256,8 @@ namespace Signorini
     nodal,
     gauss,
     simpson,
-    newton_cotes
+    newton_cotes,
+    mortar
   };
 
   enum class NormalChoice
@@ -278,6 +279,7 @@ namespace Signorini
     std::vector<ContactPairParameters> pairs;
     IntegrationRule                    rule;
     unsigned int                       order;
+    unsigned int                       segment_order; // 0: automatic
     NormalChoice                       normal;
     InitialStatus                      initial_status;
     bool                               frozen_threshold;

@@ -1,0 +1,277 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <signorini/contact/projection.h>
+#include <signorini/contact/segmentation.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    namespace
+    {
+      // Pieces (or overlaps) below this measure of the unit face are
+      // round-off slivers of coincident edges and are dropped.
+      constexpr double sliver = 1e-13;
+
+      using Polygon = std::vector<Point<2>>;
+
+      double
+      cross(const Tensor<1, 2> &a, const Tensor<1, 2> &b)
+      {
+        return a[0] * b[1] - a[1] * b[0];
+      }
+
+      double
+      signed_area(const Polygon &P)
+      {
+        double A = 0;
+        for (unsigned int i = 0; i < P.size(); ++i)
+          {
+            const Point<2> &a = P[i], &b = P[(i + 1) % P.size()];
+            A += a[0] * b[1] - a[1] * b[0];
+          }
+        return 0.5 * A;
+      }
+
+      // The part of convex P on the left of the directed line a -> b
+      // (side = +1) or on its right (side = -1): one Sutherland-Hodgman
+      // stage.
+      Polygon
+      clip(const Polygon &P, const Point<2> &a, const Point<2> &b, const int side)
+      {
+        Polygon            out;
+        const Tensor<1, 2> e = b - a;
+        const auto s = [&](const Point<2> &x) { return side * cross(e, x - a); };
+        for (unsigned int i = 0; i < P.size(); ++i)
+          {
+            const Point<2> &p = P[i], &q = P[(i + 1) % P.size()];
+            const double    sp = s(p), sq = s(q);
+            if (sp >= 0)
+              out.push_back(p);
+            if ((sp > 0 && sq < 0) || (sp < 0 && sq > 0))
+              out.push_back(p + (sp / (sp - sq)) * (q - p));
+          }
+        return out;
+      }
+
+      // Drops repeated and collinear vertices (clipping along coincident
+      // edges leaves them), so that a piece has as few triangles as its
+      // shape needs.
+      Polygon
+      simplified(const Polygon &P)
+      {
+        Polygon Q = P;
+        for (bool changed = true; changed && Q.size() > 3;)
+          {
+            changed = false;
+            for (unsigned int i = 0; i < Q.size() && Q.size() > 3; ++i)
+              {
+                const unsigned int n = Q.size();
+                const Point<2> &a = Q[(i + n - 1) % n], &b = Q[i],
+                               &c = Q[(i + 1) % n];
+                if (std::abs(cross(b - a, c - b)) < 1e-12 ||
+                    (b - a).norm_square() < 1e-24)
+                  {
+                    Q.erase(Q.begin() + i);
+                    changed = true;
+                  }
+              }
+          }
+        return Q;
+      }
+
+      bool
+      boxes_overlap(const Polygon &P, const Polygon &Q)
+      {
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            double pmin = 1e300, pmax = -1e300, qmin = 1e300, qmax = -1e300;
+            for (const auto &p : P)
+              pmin = std::min(pmin, p[d]), pmax = std::max(pmax, p[d]);
+            for (const auto &q : Q)
+              qmin = std::min(qmin, q[d]), qmax = std::max(qmax, q[d]);
+            if (pmax <= qmin || qmax <= pmin)
+              return false;
+          }
+        return true;
+      }
+
+      // A counter-clockwise polygon as convex parts: itself, or two
+      // triangles split at its reflex vertex (a projected quadrilateral has
+      // at most one).
+      std::vector<Polygon>
+      convex_parts(const Polygon &P)
+      {
+        const unsigned int n = P.size();
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const Point<2> &a = P[(i + n - 1) % n], &b = P[i], &c = P[(i + 1) % n];
+            if (cross(b - a, c - b) < 0 && n == 4)
+              return {{P[i], P[(i + 1) % 4], P[(i + 2) % 4]},
+                      {P[i], P[(i + 2) % 4], P[(i + 3) % 4]}};
+          }
+        return {P};
+      }
+    } // namespace
+
+
+    template <>
+    Segmentation<2>
+    segment_slave_face<2>(
+      const std::vector<Point<2>> &                      slave,
+      const std::vector<const std::vector<Point<2>> *> &candidates,
+      const unsigned int                                 n_points)
+    {
+      const Tensor<1, 2> d = face_geometry<2>(slave, Point<1>(0.5)).normal;
+      struct Interval
+      {
+        double lo, hi;
+        int    master;
+      };
+      std::vector<Interval> covered;
+      std::vector<double>   cuts = {0., 1.};
+      for (unsigned int m = 0; m < candidates.size(); ++m)
+        {
+          // The face's two vertices are its first nodes.
+          const auto r0 = intersect_line_with_face<2>(slave, (*candidates[m])[0], d);
+          const auto r1 = intersect_line_with_face<2>(slave, (*candidates[m])[1], d);
+          if (!r0.converged || !r1.converged)
+            continue;
+          const double lo = std::min(r0.xi[0], r1.xi[0]);
+          const double hi = std::max(r0.xi[0], r1.xi[0]);
+          if (hi <= sliver || lo >= 1 - sliver || hi - lo < sliver)
+            continue;
+          covered.push_back({lo, hi, static_cast<int>(m)});
+          for (const double c : {lo, hi})
+            if (c > 0 && c < 1)
+              cuts.push_back(c);
+        }
+      std::sort(cuts.begin(), cuts.end());
+
+      Segmentation<2>     result;
+      const QGauss<1>     gauss(n_points);
+      for (unsigned int i = 0; i + 1 < cuts.size(); ++i)
+        {
+          const double a = cuts[i], b = cuts[i + 1];
+          if (b - a < sliver)
+            continue;
+          const double mid    = 0.5 * (a + b);
+          int          master = -1;
+          for (const auto &c : covered)
+            if (c.lo <= mid && mid <= c.hi)
+              {
+                master = c.master;
+                break;
+              }
+          ++result.n_pieces;
+          for (unsigned int q = 0; q < gauss.size(); ++q)
+            {
+              result.points.emplace_back(a + (b - a) * gauss.point(q)[0]);
+              result.weights.push_back((b - a) * gauss.weight(q));
+              result.master.push_back(master);
+            }
+        }
+      return result;
+    }
+
+
+    template <>
+    Segmentation<3>
+    segment_slave_face<3>(
+      const std::vector<Point<3>> &                      slave,
+      const std::vector<const std::vector<Point<3>> *> &candidates,
+      const unsigned int                                 n_points)
+    {
+      const Tensor<1, 3> d = face_geometry<3>(slave, Point<2>(0.5, 0.5)).normal;
+      std::vector<Polygon> uncovered = {
+        {Point<2>(0, 0), Point<2>(1, 0), Point<2>(1, 1), Point<2>(0, 1)}};
+      std::vector<std::pair<Polygon, int>> pieces;
+
+      for (unsigned int m = 0; m < candidates.size(); ++m)
+        {
+          // Vertices (0,0), (1,0), (1,1), (0,1) of the master face in
+          // FE_Q<2> order 0, 1, 3, 2, carried onto the slave face.
+          Polygon      P;
+          bool         ok = true;
+          for (const unsigned int k : {0u, 1u, 3u, 2u})
+            {
+              const auto r =
+                intersect_line_with_face<3>(slave, (*candidates[m])[k], d);
+              ok &= r.converged;
+              P.push_back(r.xi);
+            }
+          if (!ok)
+            continue;
+          const double A = signed_area(P);
+          if (std::abs(A) < sliver)
+            continue;
+          if (A < 0)
+            std::reverse(P.begin(), P.end());
+
+          for (const auto &C : convex_parts(P))
+            {
+              std::vector<Polygon> still;
+              for (const auto &Q : uncovered)
+                {
+                  if (!boxes_overlap(Q, C))
+                    {
+                      still.push_back(Q);
+                      continue;
+                    }
+                  Polygon I = Q;
+                  for (unsigned int e = 0; e < C.size() && !I.empty(); ++e)
+                    I = clip(I, C[e], C[(e + 1) % C.size()], +1);
+                  if (I.size() < 3 || signed_area(I) < sliver)
+                    {
+                      still.push_back(Q);
+                      continue;
+                    }
+                  pieces.emplace_back(I, static_cast<int>(m));
+                  // Q minus C: for edge e, the part of Q inside edges
+                  // 0..e-1 and outside edge e (disjoint convex pieces).
+                  Polygon R = Q;
+                  for (unsigned int e = 0; e < C.size(); ++e)
+                    {
+                      const Point<2> &a = C[e], &b = C[(e + 1) % C.size()];
+                      const Polygon   O = clip(R, a, b, -1);
+                      if (O.size() >= 3 && signed_area(O) >= sliver)
+                        still.push_back(O);
+                      R = clip(R, a, b, +1);
+                      if (R.size() < 3 || signed_area(R) < sliver)
+                        break;
+                    }
+                }
+              uncovered.swap(still);
+            }
+        }
+      for (const auto &Q : uncovered)
+        pieces.emplace_back(Q, -1);
+
+      Segmentation<3>                    result;
+      const QWitherdenVincentSimplex<2> triangle(n_points);
+      for (const auto &[piece, master] : pieces)
+        {
+          const Polygon P = simplified(piece);
+          ++result.n_pieces;
+          for (unsigned int i = 1; i + 1 < P.size(); ++i)
+            {
+              const Tensor<1, 2> e1 = P[i] - P[0], e2 = P[i + 1] - P[0];
+              const double       J  = cross(e1, e2); // twice the area
+              if (J < 2 * sliver)
+                continue;
+              for (unsigned int q = 0; q < triangle.size(); ++q)
+                {
+                  const Point<2> &r = triangle.point(q);
+                  result.points.push_back(P[0] + r[0] * e1 + r[1] * e2);
+                  result.weights.push_back(J * triangle.weight(q));
+                  result.master.push_back(master);
+                }
+            }
+        }
+      return result;
+    }
+  } // namespace Contact
+} // namespace Signorini
