@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <set>
 
 namespace Signorini
 {
@@ -182,9 +183,11 @@ namespace Signorini
       point.face = f;
       point.q    = q;
       point.xi   = xi;
+      std::vector<double> N;
+      face_shape_values<dim>(face.X.size(), xi, N);
       point.psi.resize(face.node_local.size());
       for (unsigned int k = 0; k < face.X.size(); ++k)
-        point.psi[face.k_node[k]] = face_fe.shape_value(k, xi);
+        point.psi[face.k_node[k]] = N[k];
       const auto geometry = face_geometry<dim>(face.X, xi);
       point.x_ref         = geometry.x;
       point.weight        = w * geometry.jacobian;
@@ -781,9 +784,7 @@ namespace Signorini
                   point.paired      = true;
                   point.master_face = m;
                   point.normal      = proj.normal;
-                  point.N_m.resize(n_face_nodes);
-                  for (unsigned int k = 0; k < n_face_nodes; ++k)
-                    point.N_m[k] = face_fe.shape_value(k, proj.xi);
+                  face_shape_values<dim>(n_face_nodes, proj.xi, point.N_m);
                 }
             }
           if (!obstacles[p] && !point.paired)
@@ -833,9 +834,7 @@ namespace Signorini
                   point.paired      = true;
                   point.master_face = best_face;
                   point.normal      = best.normal;
-                  point.N_m.resize(n_face_nodes);
-                  for (unsigned int k = 0; k < n_face_nodes; ++k)
-                    point.N_m[k] = face_fe.shape_value(k, best.xi);
+                  face_shape_values<dim>(n_face_nodes, best.xi, point.N_m);
                 }
             }
           if (!point.paired)
@@ -1016,6 +1015,9 @@ namespace Signorini
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
       int                                  last_face = -1;
+      // Points of one slave face paired with one master face couple the
+      // same unknowns: one entry block per (slave face, master face).
+      std::set<int> masters_of_face;
       for (const auto &point : points)
         {
           const auto &face = slave_faces[point.face];
@@ -1023,7 +1025,10 @@ namespace Signorini
             {
               face.cell->get_dof_indices(cell_dofs);
               last_face = point.face;
+              masters_of_face.clear();
             }
+          if (!masters_of_face.insert(point.master_face).second)
+            continue;
           point_dofs(point, cell_dofs, dofs);
           constraints.add_entries_local_to_global(dofs, sparsity, false);
         }

@@ -46,28 +46,82 @@ namespace Signorini
         Tensor<1, dim> a2[dim - 1][dim - 1] = {};    // d2x/dxi_k dxi_l
       };
 
+      // 1D Lagrange basis of degree 1 (nodes 0, 1) or 2 (nodes 0, 1, 1/2:
+      // FE_Q's order, vertices first) with first and second derivatives.
+      struct Lagrange1D
+      {
+        double v[3], d[3], dd[3];
+      };
+
+      inline Lagrange1D
+      lagrange_1d(const unsigned int degree, const double x)
+      {
+        Lagrange1D l{};
+        if (degree == 1)
+          {
+            l.v[0] = 1 - x, l.v[1] = x;
+            l.d[0] = -1, l.d[1] = 1;
+          }
+        else
+          {
+            l.v[0]  = (1 - x) * (1 - 2 * x);
+            l.v[1]  = x * (2 * x - 1);
+            l.v[2]  = 4 * x * (1 - x);
+            l.d[0]  = 4 * x - 3;
+            l.d[1]  = 4 * x - 1;
+            l.d[2]  = 4 - 8 * x;
+            l.dd[0] = 4, l.dd[1] = 4, l.dd[2] = -8;
+          }
+        return l;
+      }
+
+      // FE_Q<2>(degree) node k as the tensor index (a, b) of 1D nodes
+      // (0, 1, 1/2): vertices (0,0) (1,0) (0,1) (1,1), then the midpoints of
+      // the lines x = 0, x = 1, y = 0, y = 1, then the centre.
+      constexpr unsigned int quad_a[9] = {0, 1, 0, 1, 0, 1, 2, 2, 2};
+      constexpr unsigned int quad_b[9] = {0, 0, 1, 1, 2, 2, 0, 1, 2};
+
+      /**
+       * Face map and its first and second derivatives at xi, from the
+       * closed-form tensor-product Lagrange basis of FE_Q<dim-1>(degree)
+       * (checked against FE_Q in tests/projection).
+       */
       template <int dim>
       FaceMapValues<dim>
-      evaluate_face_map(const FE_Q<dim - 1>           &fe,
+      evaluate_face_map(const FE_Q<dim - 1> &          fe,
                         const std::vector<Point<dim>> &X,
-                        const Point<dim - 1>          &xi)
+                        const Point<dim - 1> &         xi)
       {
+        const unsigned int degree = fe.degree;
         FaceMapValues<dim> v;
         for (unsigned int k = 0; k < dim - 1; ++k)
           v.a[k] = Tensor<1, dim>();
-        for (unsigned int n = 0; n < X.size(); ++n)
+        if constexpr (dim == 2)
           {
-            const double              N   = fe.shape_value(n, xi);
-            const Tensor<1, dim - 1>  dN  = fe.shape_grad(n, xi);
-            const Tensor<2, dim - 1>  ddN = fe.shape_grad_grad(n, xi);
-            for (unsigned int d = 0; d < dim; ++d)
-              v.x[d] += N * X[n][d];
-            for (unsigned int k = 0; k < dim - 1; ++k)
+            const Lagrange1D l = lagrange_1d(degree, xi[0]);
+            for (unsigned int n = 0; n < X.size(); ++n)
               {
-                v.a[k] += dN[k] * X[n];
-                for (unsigned int l = 0; l < dim - 1; ++l)
-                  v.a2[k][l] += ddN[k][l] * X[n];
+                v.x += l.v[n] * X[n];
+                v.a[0] += l.d[n] * X[n];
+                v.a2[0][0] += l.dd[n] * X[n];
               }
+          }
+        else
+          {
+            const Lagrange1D lx = lagrange_1d(degree, xi[0]);
+            const Lagrange1D ly = lagrange_1d(degree, xi[1]);
+            for (unsigned int n = 0; n < X.size(); ++n)
+              {
+                const unsigned int a = quad_a[n], b = quad_b[n];
+                const Tensor<1, dim> x = X[n];
+                v.x += (lx.v[a] * ly.v[b]) * x;
+                v.a[0] += (lx.d[a] * ly.v[b]) * x;
+                v.a[1] += (lx.v[a] * ly.d[b]) * x;
+                v.a2[0][0] += (lx.dd[a] * ly.v[b]) * x;
+                v.a2[1][1] += (lx.v[a] * ly.dd[b]) * x;
+                v.a2[0][1] += (lx.d[a] * ly.d[b]) * x;
+              }
+            v.a2[1][0] = v.a2[0][1];
           }
         return v;
       }
@@ -199,6 +253,27 @@ namespace Signorini
           std::max({result.violation, -xi[k], xi[k] - 1.});
       result.inside = (result.violation <= tol_xi);
       return result;
+    }
+
+
+    template <int dim>
+    void
+    face_shape_values(const unsigned int    n_points,
+                      const Point<dim - 1> &xi,
+                      std::vector<double> & values)
+    {
+      const unsigned int degree = face_element<dim>(n_points).degree;
+      values.resize(n_points);
+      const Lagrange1D lx = lagrange_1d(degree, xi[0]);
+      if constexpr (dim == 2)
+        for (unsigned int n = 0; n < n_points; ++n)
+          values[n] = lx.v[n];
+      else
+        {
+          const Lagrange1D ly = lagrange_1d(degree, xi[1]);
+          for (unsigned int n = 0; n < n_points; ++n)
+            values[n] = lx.v[quad_a[n]] * ly.v[quad_b[n]];
+        }
     }
 
 
@@ -416,6 +491,8 @@ namespace Signorini
     const std::vector<Point<dim>> &,                                       \
     const Point<dim> &,                                                    \
     const Tensor<1, dim> &);                                               \
+  template void face_shape_values<dim>(                                   \
+    const unsigned int, const Point<dim - 1> &, std::vector<double> &);    \
   template FaceGeometry<dim> face_geometry<dim>(                          \
     const std::vector<Point<dim>> &, const Point<dim - 1> &);              \
   template class RigidObstacle<dim>;                                       \

@@ -134,6 +134,16 @@ namespace Signorini
                              const Tensor<1, dim> &         d);
 
     /**
+     * Values at xi of the @p n_points shape functions of FE_Q<dim-1>
+     * (degree 1 or 2, node order as for project_onto_face), closed form.
+     */
+    template <int dim>
+    void
+    face_shape_values(const unsigned int    n_points,
+                      const Point<dim - 1> &xi,
+                      std::vector<double> & values);
+
+    /**
      * Position, covariant tangents dx/dxi_k and unit normal (not oriented:
      * the right-handed a_0 x a_1 in 3D, a_0 turned clockwise in 2D) of a
      * face map at xi; node order as for project_onto_face.
