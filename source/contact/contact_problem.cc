@@ -1113,8 +1113,20 @@ namespace Signorini
       ContactStatistics stats;
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
-      FullMatrix<double>                   K;
-      Vector<double>                       F;
+      FullMatrix<double>                   K, K_group;
+      Vector<double>                       F, F_group;
+      std::vector<types::global_dof_index> group_dofs;
+      int                                  group_face = -1, group_master = -1;
+      const auto                           flush = [&]() {
+        if (group_dofs.empty())
+          return;
+        if (matrix)
+          constraints.distribute_local_to_global(
+            K_group, F_group, group_dofs, *matrix, rhs);
+        else
+          constraints.distribute_local_to_global(F_group, group_dofs, rhs);
+        group_dofs.clear();
+      };
 
       for (auto &point : points)
         {
@@ -1285,11 +1297,27 @@ namespace Signorini
                             sf * w * psi[l] * psi[m] * r.drf_dLambda[k][kk];
                       }
                   }
-              constraints.distribute_local_to_global(K, F, dofs, *matrix, rhs);
             }
-          else
-            constraints.distribute_local_to_global(F, dofs, rhs);
+
+          // Points of one slave face paired with one master face share
+          // their unknowns: sum them and distribute once per group (a
+          // mortar face has tens of points per master face).
+          if (static_cast<int>(point.face) != group_face ||
+              point.master_face != group_master)
+            {
+              flush();
+              group_face   = point.face;
+              group_master = point.master_face;
+              group_dofs   = dofs;
+              F_group.reinit(n);
+              if (matrix)
+                K_group.reinit(n, n);
+            }
+          F_group += F;
+          if (matrix)
+            K_group.add(1., K);
         }
+      flush();
 
       stats.n_points   = Utilities::MPI::sum(stats.n_points, comm);
       stats.n_unpaired = Utilities::MPI::sum(stats.n_unpaired, comm);

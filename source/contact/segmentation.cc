@@ -186,16 +186,17 @@ namespace Signorini
       const unsigned int                                 n_points)
     {
       const Tensor<1, 3> d = face_geometry<3>(slave, Point<2>(0.5, 0.5)).normal;
-      std::vector<Polygon> uncovered = {
-        {Point<2>(0, 0), Point<2>(1, 0), Point<2>(1, 1), Point<2>(0, 1)}};
-      std::vector<std::pair<Polygon, int>> pieces;
+      const Polygon      square = {
+        Point<2>(0, 0), Point<2>(1, 0), Point<2>(1, 1), Point<2>(0, 1)};
 
+      // The master faces carried onto the slave face, as convex CCW parts.
+      std::vector<std::pair<Polygon, int>> clips;
       for (unsigned int m = 0; m < candidates.size(); ++m)
         {
           // Vertices (0,0), (1,0), (1,1), (0,1) of the master face in
-          // FE_Q<2> order 0, 1, 3, 2, carried onto the slave face.
-          Polygon      P;
-          bool         ok = true;
+          // FE_Q<2> order 0, 1, 3, 2.
+          Polygon P;
+          bool    ok = true;
           for (const unsigned int k : {0u, 1u, 3u, 2u})
             {
               const auto r =
@@ -210,45 +211,90 @@ namespace Signorini
             continue;
           if (A < 0)
             std::reverse(P.begin(), P.end());
+          if (!boxes_overlap(P, square))
+            continue;
+          for (auto &C : convex_parts(P))
+            clips.emplace_back(std::move(C), static_cast<int>(m));
+        }
 
-          for (const auto &C : convex_parts(P))
+      const auto intersect = [](Polygon Q, const Polygon &C) {
+        for (unsigned int e = 0; e < C.size() && Q.size() >= 3; ++e)
+          Q = clip(Q, C[e], C[(e + 1) % C.size()], +1);
+        return Q;
+      };
+      // Q minus convex C as disjoint convex pieces: for edge e, the part of
+      // Q inside edges 0..e-1 and outside edge e.
+      const auto subtract = [](Polygon Q, const Polygon &C,
+                               std::vector<Polygon> &out) {
+        for (unsigned int e = 0; e < C.size(); ++e)
+          {
+            const Point<2> &a = C[e], &b = C[(e + 1) % C.size()];
+            const Polygon   O = clip(Q, a, b, -1);
+            if (O.size() >= 3 && signed_area(O) >= sliver)
+              out.push_back(O);
+            Q = clip(Q, a, b, +1);
+            if (Q.size() < 3 || signed_area(Q) < sliver)
+              break;
+          }
+      };
+
+      // The usual case, master faces that do not overlap one another: each
+      // covers (unit square) x (its polygon), one convex piece.
+      std::vector<std::pair<Polygon, int>> pieces;
+      double                               covered = 0;
+      for (const auto &[C, m] : clips)
+        {
+          Polygon I = intersect(square, C);
+          if (I.size() >= 3 && signed_area(I) >= sliver)
+            {
+              covered += signed_area(I);
+              pieces.emplace_back(std::move(I), m);
+            }
+        }
+      if (covered > 1 + 1e-10)
+        {
+          // Overlapping master faces (a folded master surface): partition
+          // the square in turn, so that each part counts once (the first
+          // master face covering it).
+          pieces.clear();
+          std::vector<Polygon> free = {square};
+          for (const auto &[C, m] : clips)
             {
               std::vector<Polygon> still;
-              for (const auto &Q : uncovered)
+              for (const auto &Q : free)
                 {
-                  if (!boxes_overlap(Q, C))
-                    {
-                      still.push_back(Q);
-                      continue;
-                    }
-                  Polygon I = Q;
-                  for (unsigned int e = 0; e < C.size() && !I.empty(); ++e)
-                    I = clip(I, C[e], C[(e + 1) % C.size()], +1);
+                  Polygon I = boxes_overlap(Q, C) ? intersect(Q, C) : Polygon();
                   if (I.size() < 3 || signed_area(I) < sliver)
                     {
                       still.push_back(Q);
                       continue;
                     }
-                  pieces.emplace_back(I, static_cast<int>(m));
-                  // Q minus C: for edge e, the part of Q inside edges
-                  // 0..e-1 and outside edge e (disjoint convex pieces).
-                  Polygon R = Q;
-                  for (unsigned int e = 0; e < C.size(); ++e)
-                    {
-                      const Point<2> &a = C[e], &b = C[(e + 1) % C.size()];
-                      const Polygon   O = clip(R, a, b, -1);
-                      if (O.size() >= 3 && signed_area(O) >= sliver)
-                        still.push_back(O);
-                      R = clip(R, a, b, +1);
-                      if (R.size() < 3 || signed_area(R) < sliver)
-                        break;
-                    }
+                  pieces.emplace_back(std::move(I), m);
+                  subtract(Q, C, still);
                 }
-              uncovered.swap(still);
+              free.swap(still);
             }
+          for (auto &Q : free)
+            pieces.emplace_back(std::move(Q), -1);
         }
-      for (const auto &Q : uncovered)
-        pieces.emplace_back(Q, -1);
+      else if (covered < 1 - 1e-10)
+        {
+          // Part of the face has no master (the edge of the master
+          // surface): the rest of the square, in convex pieces.
+          std::vector<Polygon> free = {square};
+          for (const auto &[C, m] : clips)
+            {
+              std::vector<Polygon> still;
+              for (const auto &Q : free)
+                if (boxes_overlap(Q, C))
+                  subtract(Q, C, still);
+                else
+                  still.push_back(Q);
+              free.swap(still);
+            }
+          for (auto &Q : free)
+            pieces.emplace_back(std::move(Q), -1);
+        }
 
       Segmentation<3>                    result;
       const QWitherdenVincentSimplex<2> triangle(n_points);
