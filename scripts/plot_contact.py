@@ -16,11 +16,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 # case: (title, p0 [Pa], a [m], radial coordinate from a CSV row)
 CASES = {
-    "b2_hertz_2d": ("B2 Hertz 2D, elastic cylinder on block", 3.585e9, 6.21e-3,
+    "b2_hertz_2d": ("B2 Hertz 2D, elastic cylinder on block (mortar rule)", 3.585e9, 6.21e-3,
                     lambda r: abs(r["x"])),
     "hertz_2d_rigid": ("Hertz 2D, cylinder on rigid plane", 5.07e9, 4.39e-3,
                        lambda r: abs(r["x"])),
-    "hertz_3d": ("Hertz 3D, sphere on block (Gauss order 2)", 7.2827e9, 9.914e-3,
+    "hertz_3d": ("Hertz 3D, sphere on block (mortar rule)", 7.2827e9, 9.914e-3,
                  lambda r: math.hypot(r["x"], r["z"])),
 }
 

@@ -741,7 +741,7 @@ namespace Signorini
                       "Number of subsections 'Pair k', k = 1..N. 0: no "
                       "contact.");
     prm.declare_entry("Integration rule",
-                      "nodal",
+                      "mortar",
                       Patterns::Selection(
                         "nodal|gauss|simpson|newton-cotes|mortar"),
                       "Contact points on the slave faces (formulation.md 6): "
