@@ -7,7 +7,9 @@
 
 #include <signorini/geometry/scene.h>
 
+#include <cmath>
 #include <fstream>
+#include <sstream>
 #include <memory>
 
 namespace Signorini
@@ -36,6 +38,55 @@ namespace Signorini
         for (unsigned int d = 0; d < dim; ++d)
           p[d] = v[d];
         return p;
+      }
+
+      // Refuses a coarse cell whose (multi)linear map is not orientation
+      // preserving at every vertex: inverted or tangled (e.g. a bow-tie
+      // quadrilateral from a wrong node order). deal.II's readers repair
+      // cells that are merely inverted as a whole; a tangled cell would run
+      // and give a wrong solution without any sign.
+      template <int dim>
+      void
+      check_cells(const Triangulation<dim> &tria,
+                  const unsigned int        b,
+                  const BodyParameters &    body)
+      {
+        for (const auto &cell : tria.active_cell_iterators())
+          {
+            const double h = cell->diameter();
+            for (unsigned int corner = 0; corner < (1u << dim); ++corner)
+              {
+                // Edge vectors along the three reference directions at this
+                // corner (deal.II's lexicographic vertex numbering).
+                Tensor<2, dim> J;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const unsigned int from = corner & ~(1u << d);
+                    const unsigned int to   = corner | (1u << d);
+                    const Tensor<1, dim> e  = cell->vertex(to) - cell->vertex(from);
+                    for (unsigned int r = 0; r < dim; ++r)
+                      J[r][d] = e[r];
+                  }
+                if (determinant(J) <= 1e-12 * std::pow(h, dim))
+                  {
+                    std::ostringstream where;
+                    where << cell->center();
+                    std::ostringstream vertex;
+                    vertex << cell->vertex(corner);
+                    throw InputError(
+                      body_name(b) +
+                      (body.shape == BodyShape::file ?
+                         ", parameter 'Mesh file' (" + body.mesh_file + ")" :
+                         std::string()) +
+                      ": the cell with centre (" + where.str() +
+                      ") is inverted or tangled (its map from the reference "
+                      "cell is not orientation preserving at vertex (" +
+                      vertex.str() +
+                      ")). Fix the node order or the node positions of that "
+                      "element in the mesh.");
+                  }
+              }
+          }
       }
 
       // Gives the faces of a generated shape their user-visible ids.
@@ -267,6 +318,7 @@ namespace Signorini
         {
           Triangulation<dim> body_tria;
           build_body(bodies[b], b, parameters.input_directory, body_tria);
+          check_cells(body_tria, b, bodies[b]);
 
           // Curved shapes: surface manifold on the curved faces, transfinite
           // interpolation in the volume (initialised on the joined mesh).
