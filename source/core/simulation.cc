@@ -18,7 +18,9 @@
 #include <signorini/postprocess/stress_postprocessor.h>
 
 #include <cmath>
+#include <chrono>
 #include <filesystem>
+#include <unistd.h>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -1228,10 +1230,28 @@ namespace Signorini
     double      t_done = 0;
     TrilinosWrappers::MPI::Vector last_converged = state;
     bool                          none_converged = true;
+    // Progress with elapsed and estimated remaining time (from the share of
+    // the load path done), on a terminal only: log files and test outputs
+    // stay reproducible.
+    const bool show_eta = isatty(STDOUT_FILENO) != 0;
+    const auto start    = std::chrono::steady_clock::now();
     for (unsigned int step = 1; step <= times.size(); ++step)
       {
         pcout << "Load step " << step << " of " << times.size()
-              << ", t = " << format(times[step - 1], 4) << std::endl;
+              << ", t = " << format(times[step - 1], 4);
+        if (show_eta && t_done > 0)
+          {
+            const double elapsed =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            start)
+                .count();
+            const double left =
+              elapsed / t_done * std::max(0., times.back() - t_done);
+            pcout << std::fixed << std::setprecision(1) << "  (elapsed "
+                  << elapsed << " s, about " << left << " s left)"
+                  << std::defaultfloat << std::setprecision(6);
+          }
+        pcout << std::endl;
         // Sub-steps: the whole step first, halved after each failure.
         unsigned int cuts = 0, total_iterations = 0;
         double       t_target = times[step - 1];
