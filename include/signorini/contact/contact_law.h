@@ -166,8 +166,10 @@ namespace Signorini
      *   K_fe = +w psi_l N^e_j drf_dd[k] (row k) ; K_fm = -... ;
      *   K_fc = +w psi_l psi_m drf_dlambda ; K_ff = +w psi_l psi_m drf_dLambda.
      *
-     * Units (lambda in [Pa], d in [m]): force [Pa], r_c [m], r_f [m] if the
-     * point has an active friction law, [-] otherwise (Lambda itself).
+     * Units (lambda in [Pa], d in [m]): force [Pa], r_c [m], r_f [Pa m] if
+     * the point has an active friction law, [-] otherwise (Lambda itself).
+     * The assembly scales the lambda rows by rho_n [Pa/m] and the Lambda
+     * rows by rho_t [1/m], so that active rows are forces like R_u.
      * When mu == 0 all friction entries are zero and must not be assembled.
      */
     template <int dim>
