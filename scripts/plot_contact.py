@@ -1,4 +1,5 @@
-"""Contact pressure of the Hertz benchmarks against the Hertz solution.
+"""Contact pressure of the Hertz benchmarks against the Hertz solution, and
+the Newton convergence history of the benchmark runs.
 
 Usage: plot_contact.py RUN_DIRECTORY FIGURE_DIRECTORY
 RUN_DIRECTORY holds one output directory per case (see scripts/plot). The
@@ -63,5 +64,39 @@ def main():
         print("wrote", out)
 
 
+def plot_newton_history(runs, figures):
+    """Largest block residual |R|/|F| at every Newton iterate, one line per
+    run, the iterates numbered through the run (geometric iterations and
+    load steps one after the other); filled markers: converged iterates."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for case in HISTORY:
+        path = runs / case / "newton_history.csv"
+        if not path.exists():
+            continue
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        r = [max(float(x["r_u"]), float(x["r_lambda"]), float(x["r_Lambda"]),
+                 1e-17) for x in rows]
+        line, = ax.semilogy(range(len(r)), r, "-", marker="o", ms=3,
+                            mfc="white", label=case)
+        done = [i for i, x in enumerate(rows) if x["converged"] == "1"]
+        ax.semilogy(done, [r[i] for i in done], "o", ms=5,
+                    color=line.get_color())
+    ax.set_xlabel("Newton iterate (through the run)")
+    ax.set_ylabel("largest block residual |R| / |F|")
+    ax.set_title("Newton convergence (filled: converged)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    out = figures / "newton_history.png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print("wrote", out)
+
+
+HISTORY = ["b2_hertz_2d", "hertz_2d_rigid", "b3_ssnv128", "hertz_3d"]
+
+
 if __name__ == "__main__":
     main()
+    plot_newton_history(Path(sys.argv[1]), Path(sys.argv[2]))

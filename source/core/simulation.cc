@@ -514,6 +514,8 @@ namespace Signorini
                                    const double  step_start_time,
                                    unsigned int &iterations)
   {
+    history_time      = time;
+    history_geometric = 0;
     make_constraints(time);
     for (auto &f : neumann_functions)
       f->set_time(time);
@@ -534,6 +536,7 @@ namespace Signorini
     const bool  verbose = parameters.output.verbosity != Verbosity::quiet;
     for (unsigned int g = 1; g <= c.max_geometric_iterations; ++g)
       {
+        history_geometric = g;
         {
           TimerOutput::Scope t(timer, "pairing");
           contact->pair(state, time, step_start_time);
@@ -657,6 +660,22 @@ namespace Signorini
                 << ": |R|/|F| = " << std::scientific << std::setprecision(2)
                 << relative(residual) << std::defaultfloat
                 << (converged ? "  converged" : "") << std::endl;
+        {
+          const auto &       st = contact_statistics;
+          std::ostringstream row;
+          row << history_step << "," << format(history_time) << ","
+              << history_geometric << "," << iterations << ","
+              << format(relative(block[0]), 3) << ","
+              << format(relative(block[1]), 3) << ","
+              << format(relative(block[2]), 3);
+          if (contact->active())
+            row << "," << st.n_contact << "," << st.n_stick << ","
+                << st.n_slip << "," << st.n_changed;
+          else
+            row << ",0,0,0,0";
+          row << "," << (converged ? 1 : 0);
+          newton_rows.push_back(row.str());
+        }
         if (!std::isfinite(residual))
           return false;
         if (parameters.newton.check_jacobian && contact->active())
@@ -1198,6 +1217,16 @@ namespace Signorini
               csv << (c ? "," : "") << r[c];
             csv << "\n";
           }
+        // Every Newton iterate, including failed attempts before a step
+        // cut (their time is the cut step's target), residuals relative to
+        // the force scale as on screen.
+        std::ofstream history(parameters.output.directory +
+                              "/newton_history.csv");
+        history << "step,time,geometric_iteration,newton_iteration,r_u,"
+                   "r_lambda,r_Lambda,n_contact,n_stick,n_slip,n_changed,"
+                   "converged\n";
+        for (const auto &r : newton_rows)
+          history << r << "\n";
       }
   }
 
@@ -1237,6 +1266,7 @@ namespace Signorini
     const auto start    = std::chrono::steady_clock::now();
     for (unsigned int step = 1; step <= times.size(); ++step)
       {
+        history_step = step;
         pcout << "Load step " << step << " of " << times.size()
               << ", t = " << format(times[step - 1], 4);
         if (show_eta && t_done > 0)

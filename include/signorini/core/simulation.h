@@ -157,6 +157,12 @@ namespace Signorini
     ReferenceErrors                  errors;
     std::vector<std::pair<double, std::string>> pvtu_records;
     std::vector<std::vector<std::string>>       statistics_rows;
+    // Newton history for newton_history.csv: one row per iterate, and
+    // where the iterate belongs (load step, target time, geometric
+    // iteration).
+    std::vector<std::string> newton_rows;
+    unsigned int             history_step = 0, history_geometric = 0;
+    double                   history_time = 0;
   };
 
   /** Reads @p filename, dispatches on Dimension and runs; used by main(). */
