@@ -923,6 +923,27 @@ namespace Signorini
                       "0.05",
                       Patterns::Double(0),
                       "Tolerance of the relative L2 pressure error.");
+    prm.declare_entry("Friction force ratio",
+                      "0",
+                      Patterns::Double(0),
+                      "Reference for |F_t| / |F_n| of the contact force on "
+                      "the slave of pair 1, F_n its component along 'Friction "
+                      "ratio normal' and F_t the rest (= mu in full sliding); "
+                      "0: not checked.");
+    prm.declare_entry("Friction ratio normal",
+                      "0, 1, 0",
+                      point_pattern(),
+                      "Direction of the normal force for 'Friction force "
+                      "ratio' (normalised).");
+    prm.declare_entry("Friction ratio from time",
+                      "0",
+                      Patterns::Double(0),
+                      "The friction force ratio is checked at the steps "
+                      "with t >= this time (steady sliding).");
+    prm.declare_entry("Friction ratio tolerance",
+                      "0.01",
+                      Patterns::Double(0),
+                      "Relative tolerance of the friction force ratio check.");
     prm.declare_entry("Point values",
                       "",
                       Patterns::Anything(),
@@ -952,6 +973,10 @@ namespace Signorini
     contact_pressure       = prm.get("Contact pressure");
     pressure_l2_tolerance  = prm.get_double("Pressure L2 tolerance");
     point_value_tolerance  = prm.get_double("Point value tolerance");
+    friction_ratio         = prm.get_double("Friction force ratio");
+    friction_ratio_normal  = to_doubles(prm.get("Friction ratio normal"));
+    friction_ratio_tolerance = prm.get_double("Friction ratio tolerance");
+    friction_ratio_from      = prm.get_double("Friction ratio from time");
     point_values.clear();
     for (const auto &entry : split_expressions(prm.get("Point values")))
       {

@@ -977,7 +977,7 @@ namespace Signorini
   // pressure profile (relative L2 over the contact points), point values.
   template <int dim>
   void
-  Simulation<dim>::check_contact_references()
+  Simulation<dim>::check_contact_references(const double time)
   {
     const auto &ref = parameters.reference;
     contact_checks.clear();
@@ -1059,6 +1059,29 @@ namespace Signorini
                                  format(e, 2) + " (tolerance " +
                                  format(ref.pressure_l2_tolerance, 1) +
                                  "): " + (pass ? "PASS" : "FAIL"));
+      }
+    if (ref.friction_ratio > 0 && time >= ref.friction_ratio_from)
+      {
+        Tensor<1, dim> n;
+        for (unsigned int d = 0; d < dim && d < ref.friction_ratio_normal.size();
+             ++d)
+          n[d] = ref.friction_ratio_normal[d];
+        if (n.norm() == 0)
+          throw InputError("subsection 'Reference solution', parameter "
+                           "'Friction ratio normal': give a nonzero "
+                           "direction.");
+        n /= n.norm();
+        const Tensor<1, dim> F   = contact->summary()[0].force;
+        const double         F_n = F * n;
+        const double ratio = std::abs(F_n) > 0 ? (F - F_n * n).norm() /
+                                                   std::abs(F_n) :
+                                                 0.;
+        line("friction force ratio |F_t|/|F_n|",
+             ratio,
+             ref.friction_ratio,
+             std::abs(ratio - ref.friction_ratio) / ref.friction_ratio,
+             ref.friction_ratio_tolerance,
+             "relative error");
       }
     const char *axis[] = {"x", "y", "z"};
     for (const auto &pv : ref.point_values)
@@ -1322,7 +1345,7 @@ namespace Signorini
         compute_reactions();
         compute_reference_errors(times[step - 1]);
         if (contact->active())
-          check_contact_references();
+          check_contact_references(times[step - 1]);
         write_statistics(step, times[step - 1], total_iterations);
         output_results(step, times[step - 1]);
         if (contact->active() && parameters.output.write_csv)
@@ -1341,7 +1364,20 @@ namespace Signorini
             << (jacobian_error_max < 1e-6 ? "PASS" : "FAIL")
             << std::defaultfloat << std::endl;
     if (parameters.output.timing_summary)
-      timer.print_wall_time_statistics(mpi_communicator);
+      {
+        timer.print_wall_time_statistics(mpi_communicator);
+        // Peak resident memory (VmHWM) of each rank.
+        Utilities::System::MemoryStats memory;
+        Utilities::System::get_memory_stats(memory);
+        const double mb = memory.VmHWM / 1024.;
+        pcout << "Peak memory: " << std::fixed << std::setprecision(1)
+              << Utilities::MPI::max(mb, mpi_communicator)
+              << " MB on the largest rank, "
+              << Utilities::MPI::sum(mb, mpi_communicator) << " MB over "
+              << Utilities::MPI::n_mpi_processes(mpi_communicator)
+              << " rank(s)" << std::defaultfloat << std::setprecision(6)
+              << std::endl;
+      }
   }
 
 

@@ -207,6 +207,9 @@ namespace Signorini
     double                   tolerance;
     // Contact checks (0 / empty: not checked).
     double              max_pressure, pressure_tolerance;
+    double              friction_ratio, friction_ratio_tolerance;
+    double              friction_ratio_from; // first time checked
+    std::vector<double> friction_ratio_normal;
     double              half_width, half_width_tolerance;
     std::vector<double> contact_centre;
     std::string         contact_pressure;

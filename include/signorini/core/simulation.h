@@ -96,7 +96,7 @@ namespace Signorini
     double
     point_value(const Point<dim> &p, const unsigned int component) const;
     void
-    check_contact_references();
+    check_contact_references(const double time);
     void
     compute_reactions();
     void
