@@ -455,6 +455,14 @@ namespace Signorini
                       Patterns::Integer(0, 30),
                       "How often a load step that fails to converge is "
                       "halved and retried before the run stops.");
+    prm.declare_entry("Predictor",
+                      "constant",
+                      Patterns::Selection("constant|extrapolated"),
+                      "First iterate of a load step: the last converged "
+                      "state with the new Dirichlet values (constant), or "
+                      "that state plus the increment of the last converged "
+                      "step scaled to the new step size (extrapolated: "
+                      "starts sliding contacts with their slip direction).");
     prm.leave_subsection();
   }
 
@@ -478,6 +486,7 @@ namespace Signorini
           "must be > 0 and strictly increasing; entry " +
           std::to_string(k + 1) + " is not.");
     max_cuts = prm.get_integer("Maximum step cuts");
+    extrapolate = prm.get("Predictor") == "extrapolated";
     prm.leave_subsection();
   }
 

@@ -523,7 +523,15 @@ namespace Signorini
     state_step_start = state;
     {
       TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
-      owned = state;
+      for (const auto i : owned_system)
+        owned[i] = state[i];
+      // Extrapolated predictor: the last converged increment, scaled to
+      // this step's size; Dirichlet values then override their entries.
+      if (parameters.load_stepping.extrapolate && last_step_size > 0)
+        for (const auto i : owned_system)
+          owned[i] += (time - step_start_time) / last_step_size *
+                      last_increment[i];
+      owned.compress(VectorOperation::insert);
       constraints_values.distribute(owned);
       state = owned;
     }
@@ -1313,6 +1321,11 @@ namespace Signorini
             unsigned int iterations = 0;
             if (solve_load_step(t_target, t_done, iterations))
               {
+                last_increment.reinit(owned_system, mpi_communicator);
+                for (const auto i : owned_system)
+                  last_increment[i] = state[i] - state_step_start[i];
+                last_increment.compress(VectorOperation::insert);
+                last_step_size = t_target - t_done;
                 total_iterations += iterations;
                 last_converged = state;
                 none_converged = false;

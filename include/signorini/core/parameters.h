@@ -145,6 +145,7 @@ namespace Signorini
   {
     std::vector<double> step_times; // end times of the steps, increasing
     unsigned int        max_cuts;
+    bool                extrapolate; // Predictor = extrapolated
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

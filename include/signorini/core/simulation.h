@@ -145,6 +145,10 @@ namespace Signorini
     IndexSet                      owned_system, relevant_system;
     TrilinosWrappers::MPI::Vector state;            // ghosted system iterate
     TrilinosWrappers::MPI::Vector state_step_start; // ghosted, step start
+    // Increment of the last converged (sub)step and its size in t, for the
+    // extrapolated predictor; size 0: none yet.
+    TrilinosWrappers::MPI::Vector last_increment; // owned
+    double                        last_step_size = 0;
     TrilinosWrappers::MPI::Vector contact_force;    // on u DoFs [N]
     Contact::ContactStatistics    contact_statistics;
     bool                          first_pairing = true;
