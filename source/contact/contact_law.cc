@@ -248,6 +248,7 @@ namespace Signorini
           response.status = PointStatus::slip;
 
           const Tensor<1, dim> q = h / norm_h;
+          response.slip_direction = q;
           const Tensor<2, dim> K_B =
             (identity_tensor<dim>() - outer_product(q, q)) / norm_h;
           // K_B maps tangent vectors to tangent vectors, so K_B P = P K_B P.

@@ -928,6 +928,7 @@ namespace Signorini
                     best                     = d2;
                     points[i].status         = old_points[j].status;
                     points[i].friction_active = old_points[j].friction_active;
+                    points[i].slip_direction  = old_points[j].slip_direction;
                   }
             }
         }
@@ -1210,10 +1211,18 @@ namespace Signorini
           // A point that closed with a zero threshold (friction inactive,
           // formulation.md 3.3) and one with friction on are different
           // branches of the law even when both are labelled 'slip'.
+          // A slip direction that turned by more than 90 degrees (in 2D:
+          // reversed) is another branch of the slip law too.
+          const bool reversed = status == PointStatus::slip &&
+                                point.status == PointStatus::slip &&
+                                r.slip_direction * point.slip_direction < 0;
+          stats.n_reversed += reversed;
           stats.n_changed += (status != point.status) ||
-                             (r.friction_active != point.friction_active);
+                             (r.friction_active != point.friction_active) ||
+                             reversed;
           point.status          = status;
           point.friction_active = r.friction_active;
+          point.slip_direction  = r.slip_direction;
           point.gap    = s.gap;
           point.lambda = s.lambda;
           point.Lambda = s.Lambda;
@@ -1325,6 +1334,7 @@ namespace Signorini
       stats.n_stick    = Utilities::MPI::sum(stats.n_stick, comm);
       stats.n_slip     = Utilities::MPI::sum(stats.n_slip, comm);
       stats.n_changed  = Utilities::MPI::sum(stats.n_changed, comm);
+      stats.n_reversed = Utilities::MPI::sum(stats.n_reversed, comm);
       return stats;
     }
 

@@ -660,8 +660,10 @@ namespace Signorini
               pcout << " (stick " << st.n_stick << ", slip " << st.n_slip
                     << ")";
             pcout << " free " << st.n_points - st.n_contact << " changed "
-                  << st.n_changed << (converged ? "  converged" : "")
-                  << std::endl;
+                  << st.n_changed;
+            if (st.n_reversed > 0)
+              pcout << " (slip reversed " << st.n_reversed << ")";
+            pcout << (converged ? "  converged" : "") << std::endl;
           }
         else if (verbose)
           pcout << "    Newton " << std::setw(2) << iterations
@@ -678,9 +680,9 @@ namespace Signorini
               << format(relative(block[2]), 3);
           if (contact->active())
             row << "," << st.n_contact << "," << st.n_stick << ","
-                << st.n_slip << "," << st.n_changed;
+                << st.n_slip << "," << st.n_changed << "," << st.n_reversed;
           else
-            row << ",0,0,0,0";
+            row << ",0,0,0,0,0";
           row << "," << (converged ? 1 : 0);
           newton_rows.push_back(row.str());
         }
@@ -1255,7 +1257,7 @@ namespace Signorini
                               "/newton_history.csv");
         history << "step,time,geometric_iteration,newton_iteration,r_u,"
                    "r_lambda,r_Lambda,n_contact,n_stick,n_slip,n_changed,"
-                   "converged\n";
+                   "n_reversed,converged\n";
         for (const auto &r : newton_rows)
           history << r << "\n";
       }

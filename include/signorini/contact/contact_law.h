@@ -202,6 +202,12 @@ namespace Signorini
       Tensor<1, dim> force;
 
       /**
+       * Slip direction h / |h| of a slipping point (section 3.2), zero
+       * otherwise; lets the caller detect slip reversals between iterates.
+       */
+      Tensor<1, dim> slip_direction;
+
+      /**
        * Signorini row density [m] (L_c^c / (w psi_l)).
        */
       double r_c;

@@ -62,6 +62,7 @@ namespace Signorini
       unsigned int n_stick    = 0;
       unsigned int n_slip     = 0;
       unsigned int n_changed  = 0; // status differs from the last evaluation
+      unsigned int n_reversed = 0; // slip direction turned by > 90 degrees
     };
 
     template <int dim>
@@ -284,6 +285,7 @@ namespace Signorini
         // Last evaluation:
         PointStatus        status = PointStatus::free;
         bool               friction_active = false; // law branch, 3.3
+        Tensor<1, dim>     slip_direction;          // h / |h| if slipping
         double             gap = 0, lambda = 0;
         Tensor<1, dim - 1> Lambda, slip;
         Tensor<1, dim>     force;
