@@ -1118,6 +1118,9 @@ namespace Signorini
       Vector<double>                       F, F_group;
       std::vector<types::global_dof_index> group_dofs;
       int                                  group_face = -1, group_master = -1;
+      // Per-point work arrays, sized per point but allocated once.
+      std::vector<double>       N_e, Nd;
+      std::vector<unsigned int> comp;
       const auto                           flush = [&]() {
         if (group_dofs.empty())
           return;
@@ -1142,7 +1145,7 @@ namespace Signorini
           const unsigned int n_e = face.u_local.size();
           const unsigned int n_l = face.node_local.size();
           const std::vector<double> &psi = point.psi;
-          std::vector<double>        N_e(n_e);
+          N_e.resize(n_e);
           Point<dim>                 x_e = point.x_ref;
           Tensor<1, dim>             du_e;
           for (unsigned int a = 0; a < n_e; ++a)
@@ -1239,8 +1242,8 @@ namespace Signorini
 
           // Shape value and component of each displacement column, with the
           // sign of d = u^e - u^m.
-          std::vector<double>       Nd(n_e + n_m);
-          std::vector<unsigned int> comp(n_e + n_m);
+          Nd.resize(n_e + n_m);
+          comp.resize(n_e + n_m);
           for (unsigned int a = 0; a < n_e; ++a)
             {
               Nd[a]   = N_e[a];

@@ -1,8 +1,6 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/tensor.h>
 
-#include <deal.II/fe/fe_q.h>
-
 #include <signorini/contact/projection.h>
 
 #include <algorithm>
@@ -18,21 +16,18 @@ namespace Signorini
     namespace
     {
       /**
-       * FE_Q<dim-1>(degree) for degree 1 or 2, built once per process
-       * (thread-safe function-local statics).
+       * Degree (1 or 2) of a face given by @p n_points nodes of
+       * FE_Q<dim-1>(degree).
        */
       template <int dim>
-      const FE_Q<dim - 1> &
-      face_element(const unsigned int n_points)
+      unsigned int
+      face_degree(const unsigned int n_points)
       {
-        static const FE_Q<dim - 1> q1(1);
-        static const FE_Q<dim - 1> q2(2);
-        if (n_points == q1.n_dofs_per_cell())
-          return q1;
-        AssertThrow(n_points == q2.n_dofs_per_cell(),
+        const unsigned int q1 = dim == 2 ? 2 : 4, q2 = dim == 2 ? 3 : 9;
+        AssertThrow(n_points == q1 || n_points == q2,
                     ExcMessage("project_onto_face: a face needs 2 (Q1) or 3 "
                                "(Q2) points in 2D, 4 (Q1) or 9 (Q2) in 3D."));
-        return q2;
+        return n_points == q1 ? 1 : 2;
       }
 
       /**
@@ -88,11 +83,10 @@ namespace Signorini
        */
       template <int dim>
       FaceMapValues<dim>
-      evaluate_face_map(const FE_Q<dim - 1> &          fe,
-                        const std::vector<Point<dim>> &X,
+      evaluate_face_map(const std::vector<Point<dim>> &X,
                         const Point<dim - 1> &         xi)
       {
-        const unsigned int degree = fe.degree;
+        const unsigned int degree = face_degree<dim>(X.size());
         FaceMapValues<dim> v;
         for (unsigned int k = 0; k < dim - 1; ++k)
           v.a[k] = Tensor<1, dim>();
@@ -171,8 +165,6 @@ namespace Signorini
                       const unsigned int             max_iterations)
     {
       static_assert(dim == 2 || dim == 3, "dim must be 2 or 3");
-      const FE_Q<dim - 1> &fe = face_element<dim>(face_points.size());
-
       // Steps below this (reference coordinates) end the iteration; the step
       // is applied, so quadratic convergence leaves ~1e-20 behind.
       constexpr double step_tolerance = 1e-10;
@@ -180,7 +172,7 @@ namespace Signorini
       constexpr double max_step = 0.5;
 
       const auto objective = [&](const Point<dim - 1> &xi) {
-        return 0.5 * (evaluate_face_map(fe, face_points, xi).x - p)
+        return 0.5 * (evaluate_face_map(face_points, xi).x - p)
                        .norm_square();
       };
 
@@ -192,7 +184,7 @@ namespace Signorini
       for (unsigned int it = 0; it < max_iterations; ++it)
         {
           result.n_iterations = it + 1;
-          const FaceMapValues<dim> v = evaluate_face_map(fe, face_points, xi);
+          const FaceMapValues<dim> v = evaluate_face_map(face_points, xi);
           const Tensor<1, dim>     r = v.x - p;
 
           Tensor<1, dim - 1> grad;
@@ -238,7 +230,7 @@ namespace Signorini
           xi += alpha * step;
         }
 
-      const FaceMapValues<dim> v = evaluate_face_map(fe, face_points, xi);
+      const FaceMapValues<dim> v = evaluate_face_map(face_points, xi);
       result.xi       = xi;
       result.x_m      = v.x;
       result.tangents = v.a;
@@ -262,7 +254,7 @@ namespace Signorini
                       const Point<dim - 1> &xi,
                       std::vector<double> & values)
     {
-      const unsigned int degree = face_element<dim>(n_points).degree;
+      const unsigned int degree = face_degree<dim>(n_points);
       values.resize(n_points);
       const Lagrange1D lx = lagrange_1d(degree, xi[0]);
       if constexpr (dim == 2)
@@ -283,9 +275,7 @@ namespace Signorini
                   const Point<dim - 1> &         xi)
     {
       const FaceMapValues<dim> v =
-        evaluate_face_map(face_element<dim>(face_points.size()),
-                          face_points,
-                          xi);
+        evaluate_face_map(face_points, xi);
       FaceGeometry<dim> g;
       g.x        = v.x;
       g.tangents = v.a;
@@ -304,14 +294,13 @@ namespace Signorini
                              const Point<dim> &             p,
                              const Tensor<1, dim> &         d)
     {
-      const FE_Q<dim - 1> &fe = face_element<dim>(face_points.size());
       LineIntersection<dim> result;
       for (unsigned int k = 0; k < dim - 1; ++k)
         result.xi[k] = 0.5;
       // F(xi, t) = x(xi) - p - t d; columns of dF: a_0 (, a_1), -d.
       for (unsigned int it = 0; it < 30; ++it)
         {
-          const FaceMapValues<dim> v = evaluate_face_map(fe, face_points, result.xi);
+          const FaceMapValues<dim> v = evaluate_face_map(face_points, result.xi);
           const Tensor<1, dim>     F = v.x - p - result.t * d;
           Tensor<2, dim>           J;
           for (unsigned int r = 0; r < dim; ++r)
