@@ -118,7 +118,7 @@ namespace Signorini
           // Section 3.1: contact iff lambda_aug < 0 (strict: lambda_aug == 0
           // is the kink, assigned to the free side).
           const double lambda_aug = state.lambda - rho_n * state.gap;
-          response.in_contact     = (lambda_aug < 0.);
+          response.in_contact     = (lambda_aug < 0.) || state.freeze_contact;
 
           if (response.in_contact)
             {
@@ -217,7 +217,14 @@ namespace Signorini
       // s = -mu lambda_f of section 5, written as -mu lambda_f throughout.
       const double mu_lf = mu * lambda_f;
 
-      if (norm_h <= 1.)
+      // A frozen slip direction (anti-cycling), carried into the current
+      // tangent plane; ignored if the plane turned away from it.
+      Tensor<1, dim> q_frozen = P * state.frozen_slip_direction;
+      const bool frozen_slip  = q_frozen.norm() > 0.5;
+      if (frozen_slip)
+        q_frozen /= q_frozen.norm();
+
+      if ((norm_h <= 1. || state.freeze_stick) && !frozen_slip)
         {
           // Stick: P_B(h) = h.
           response.status = PointStatus::stick;
@@ -247,10 +254,13 @@ namespace Signorini
           // Slip: P_B(h) = h / |h|, K_B = (I - q (x) q) / |h|, q = h / |h|.
           response.status = PointStatus::slip;
 
-          const Tensor<1, dim> q = h / norm_h;
+          // Frozen: q does not depend on h, so K_B = 0.
+          const Tensor<1, dim> q = frozen_slip ? q_frozen : h / norm_h;
           response.slip_direction = q;
           const Tensor<2, dim> K_B =
-            (identity_tensor<dim>() - outer_product(q, q)) / norm_h;
+            frozen_slip ?
+              Tensor<2, dim>() :
+              (identity_tensor<dim>() - outer_product(q, q)) / norm_h;
           // K_B maps tangent vectors to tangent vectors, so K_B P = P K_B P.
           const Tensor<2, dim> K_B_P = K_B * P;
 

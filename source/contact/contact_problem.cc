@@ -94,8 +94,14 @@ namespace Signorini
         contact.segment_order > 0 ?
           contact.segment_order :
           exact_segment_order<dim>(parameters.fe_degree);
-      rule = mortar ? std::make_unique<FixedRule<dim>>(IntegrationRule::gauss,
-                                                       segment_order,
+      // With the mortar rule, a rigid analytic master has no faces to cut
+      // its slave faces by: they use the nodal rule, one law per multiplier
+      // node. Statuses at Gauss points with interpolated multipliers may
+      // admit no consistent active set (B4 ironing cycles without end);
+      // at the nodes they do, and on rigid Hertz the nodal rule is also
+      // the more accurate one (doc/robustness.md).
+      rule = mortar ? std::make_unique<FixedRule<dim>>(IntegrationRule::nodal,
+                                                       1,
                                                        parameters.fe_degree) :
                       std::make_unique<FixedRule<dim>>(contact.rule,
                                                        contact.order,
@@ -403,6 +409,7 @@ namespace Signorini
       // pressure is known p_ref = 1e-3 E.
       rho_n.assign(n_pairs, 0.);
       rho_t.assign(n_pairs, 0.);
+      rho_t_measured.assign(n_pairs, false);
       face_size.assign(n_pairs, 0.);
       youngs.assign(n_pairs, 0.);
       for (unsigned int p = 0; p < n_pairs; ++p)
@@ -623,10 +630,18 @@ namespace Signorini
         Utilities::MPI::sum(static_cast<unsigned int>(points.size()), comm);
       pcout << "Contact: " << n_pairs << " pair(s), rule ";
       if (mortar)
-        pcout << "mortar (segment-based, " << segment_order
-              << (dim == 2 ? " Gauss points per segment" :
-                             " points per direction on each triangle")
-              << ")";
+        {
+          pcout << "mortar (segment-based, " << segment_order
+                << (dim == 2 ? " Gauss points per segment" :
+                               " points per direction on each triangle")
+                << ")";
+          for (const auto &obstacle : obstacles)
+            if (obstacle)
+              {
+                pcout << ", nodal on rigid masters";
+                break;
+              }
+        }
       else
         pcout << rule->name() << ", " << n_points_total << " contact points";
       pcout << " on "
@@ -873,7 +888,8 @@ namespace Signorini
           const std::size_t  first_new = points.size();
           if (obstacles[p])
             {
-              // Analytic master: nothing to cut, Gauss on the whole face.
+              // Analytic master: nothing to cut, nodal rule (see the
+              // constructor).
               const auto &quadrature = rule->face_quadrature(f);
               for (unsigned int q = 0; q < quadrature.size(); ++q)
                 points.push_back(
@@ -936,7 +952,7 @@ namespace Signorini
 
 
     template <int dim>
-    void
+    bool
     ContactProblem<dim>::update_coefficients(
       const TrilinosWrappers::MPI::Vector &state)
     {
@@ -957,9 +973,16 @@ namespace Signorini
           const double s = Utilities::MPI::sum(sum2[p], comm);
           const double n = Utilities::MPI::sum(count[p], comm);
           if (pairs[p].friction > 0 && n > 0 && s > 0)
-            rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
-                       (pairs[p].friction * std::sqrt(s / n));
+            {
+              rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
+                         (pairs[p].friction * std::sqrt(s / n));
+              rho_t_measured[p] = true;
+            }
         }
+      for (unsigned int p = 0; p < pairs.size(); ++p)
+        if (pairs[p].friction > 0 && !rho_t_measured[p])
+          return false;
+      return true;
     }
 
 
@@ -1109,9 +1132,11 @@ namespace Signorini
                                   const AffineConstraints<double> &constraints,
                                   TrilinosWrappers::SparseMatrix * matrix,
                                   TrilinosWrappers::MPI::Vector &  rhs,
-                                  TrilinosWrappers::MPI::Vector &contact_force)
+                                  TrilinosWrappers::MPI::Vector &contact_force,
+                                  const bool new_iterate)
     {
       ContactStatistics stats;
+      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
       FullMatrix<double>                   K, K_group;
@@ -1195,6 +1220,9 @@ namespace Signorini
           s.slip = du_e - du_m;
           s.slip -= (s.slip * s.normal) * s.normal;
 
+          s.freeze_contact        = point.freeze_contact;
+          s.frozen_slip_direction = point.frozen_slip_direction;
+          s.freeze_stick          = point.freeze_stick;
           const auto r = evaluate_contact_law(s, law);
 
           // Statistics and the values for output.
@@ -1219,10 +1247,81 @@ namespace Signorini
           const bool reversed = status == PointStatus::slip &&
                                 point.status == PointStatus::slip &&
                                 r.slip_direction * point.slip_direction < 0;
+          const bool changed = (status != point.status) ||
+                               (r.friction_active != point.friction_active) ||
+                               reversed;
           stats.n_reversed += reversed;
-          stats.n_changed += (status != point.status) ||
-                             (r.friction_active != point.friction_active) ||
-                             reversed;
+          stats.n_changed += changed;
+
+          // Anti-cycling (formulation.md 8), see start_newton_solve().
+          const bool frozen = point.freeze_contact;
+          if (frozen)
+            {
+              // What the plain law says at this iterate.
+              PointState<dim> plain       = s;
+              plain.freeze_contact        = false;
+              plain.frozen_slip_direction = Tensor<1, dim>();
+              plain.freeze_stick          = false;
+              const auto rp = evaluate_contact_law(plain, law);
+              const PointStatus plain_status =
+                !rp.in_contact ?
+                  PointStatus::free :
+                  (fric && rp.friction_active ? rp.status : PointStatus::slip);
+              ++stats.n_frozen;
+              stats.n_violated += plain_status != status ||
+                                  (status == PointStatus::slip &&
+                                   rp.slip_direction * r.slip_direction < 0);
+            }
+          if (new_iterate && !frozen)
+            {
+              // Back to the status of two iterates before (a 2-cycle), or
+              // changed more than 2 N times (longer cycles).
+              point.changes += changed;
+              const bool back =
+                changed && iterates_recorded >= 2 &&
+                ((status == point.status_before &&
+                  (status != PointStatus::slip ||
+                   r.slip_direction * point.direction_before >= 0)) ||
+                 (freeze_after > 0 && point.changes > 2 * freeze_after));
+              if (back)
+                {
+                  ++point.cycles;
+                  ++stats.n_cycling;
+                }
+              if (back && freeze_after > 0 && point.cycles >= freeze_after &&
+                  !point.was_frozen)
+                {
+                  // Freeze from the next evaluation on: in contact if the
+                  // cycle went through 'free', slipping in the last slip
+                  // direction if it went through stick or reversed.
+                  point.was_frozen = true;
+                  ++stats.n_newly_frozen;
+                  if (status == PointStatus::free ||
+                      point.status == PointStatus::free)
+                    point.freeze_contact = true;
+                  else if (fric && status == PointStatus::slip &&
+                           point.status == PointStatus::slip)
+                    {
+                      // Reversed and back: friction in either direction
+                      // drives the slip the other way; only stick can be
+                      // consistent.
+                      point.freeze_contact = true;
+                      point.freeze_stick   = true;
+                    }
+                  else if (fric)
+                    {
+                      point.freeze_contact = true;
+                      point.frozen_slip_direction =
+                        status == PointStatus::slip ? r.slip_direction :
+                                                      point.slip_direction;
+                    }
+                }
+            }
+          if (new_iterate)
+            {
+              point.status_before    = point.status;
+              point.direction_before = point.slip_direction;
+            }
           point.status          = status;
           point.friction_active = r.friction_active;
           point.slip_direction  = r.slip_direction;
@@ -1338,7 +1437,49 @@ namespace Signorini
       stats.n_slip     = Utilities::MPI::sum(stats.n_slip, comm);
       stats.n_changed  = Utilities::MPI::sum(stats.n_changed, comm);
       stats.n_reversed = Utilities::MPI::sum(stats.n_reversed, comm);
+      if (new_iterate)
+        ++iterates_recorded;
+      stats.n_cycling  = Utilities::MPI::sum(stats.n_cycling, comm);
+      stats.n_frozen   = Utilities::MPI::sum(stats.n_frozen, comm);
+      stats.n_newly_frozen = Utilities::MPI::sum(stats.n_newly_frozen, comm);
+      stats.n_violated = Utilities::MPI::sum(stats.n_violated, comm);
       return stats;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::start_newton_solve()
+    {
+      iterates_recorded = 0;
+      for (auto &point : points)
+        {
+          point.status_before         = point.status;
+          point.direction_before      = point.slip_direction;
+          point.cycles                = 0;
+          point.changes               = 0;
+          point.was_frozen            = false;
+          point.freeze_contact        = false;
+          point.frozen_slip_direction = Tensor<1, dim>();
+          point.freeze_stick          = false;
+        }
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::release_frozen()
+    {
+      unsigned int n = 0;
+      for (auto &point : points)
+        if (point.freeze_contact)
+          {
+            ++n;
+            point.freeze_contact        = false;
+            point.frozen_slip_direction = Tensor<1, dim>();
+            point.freeze_stick          = false;
+          }
+      return Utilities::MPI::sum(n, comm);
     }
 
 
@@ -1351,6 +1492,13 @@ namespace Signorini
         {
           auto &r = result[slave_faces[point.face].pair];
           r.force += point.weight * point.force;
+          if (point.status != PointStatus::free)
+            {
+              const double f_n = point.force * point.normal;
+              r.normal_force_local += point.weight * std::abs(f_n);
+              r.tangential_force_local +=
+                point.weight * (point.force - f_n * point.normal).norm();
+            }
           r.p_max = std::max(r.p_max, -point.lambda);
           ++r.n_points;
           r.n_contact += point.status != PointStatus::free;
@@ -1361,6 +1509,10 @@ namespace Signorini
         {
           r.force     = Utilities::MPI::sum(r.force, comm);
           r.p_max     = Utilities::MPI::max(r.p_max, comm);
+          r.normal_force_local =
+            Utilities::MPI::sum(r.normal_force_local, comm);
+          r.tangential_force_local =
+            Utilities::MPI::sum(r.tangential_force_local, comm);
           r.n_points  = Utilities::MPI::sum(r.n_points, comm);
           r.n_contact = Utilities::MPI::sum(r.n_contact, comm);
           r.n_stick   = Utilities::MPI::sum(r.n_stick, comm);

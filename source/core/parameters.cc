@@ -825,6 +825,17 @@ namespace Signorini
                       Patterns::Integer(1, 1000),
                       "Cap of the geometric loop; reaching it fails the step "
                       "(which is then cut).");
+    prm.declare_entry("Freeze after cycles",
+                      "3",
+                      Patterns::Integer(0, 100),
+                      "Anti-cycling (formulation.md 8): a contact point "
+                      "whose status returns to the one it had two Newton "
+                      "iterates before (stick/slip/stick, contact/free/"
+                      "contact, slip direction reversed and back) this many "
+                      "times in one Newton solve is frozen: kept in contact, "
+                      "or kept slipping in its last slip direction. A frozen "
+                      "point that the plain law contradicts at convergence "
+                      "is released and Newton goes on. 0: never freeze.");
     for (unsigned int k = 1; k <= counts.n_pairs; ++k)
       {
         prm.enter_subsection("Pair " + std::to_string(k));
@@ -862,6 +873,7 @@ namespace Signorini
     projection_tolerance     = prm.get_double("Projection tolerance");
     geometric_tolerance      = prm.get_double("Geometric tolerance");
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
+    freeze_after_cycles      = prm.get_integer("Freeze after cycles");
     pairs.resize(counts.n_pairs);
     for (unsigned int k = 0; k < counts.n_pairs; ++k)
       {
@@ -944,6 +956,25 @@ namespace Signorini
                       point_pattern(),
                       "Direction of the normal force for 'Friction force "
                       "ratio' (normalised).");
+    prm.declare_entry("Friction ratio frame",
+                      "global",
+                      Patterns::Selection("global|contact"),
+                      "global: F_n and F_t are the parts of the total contact "
+                      "force along 'Friction ratio normal' and across it "
+                      "(a flat master). contact: F_n = sum of w |f . n| and "
+                      "F_t = sum of w |P f| over the contact points, each in "
+                      "its own contact frame (a curved master, e.g. an "
+                      "ironing die, whose total force also carries the "
+                      "tilted normal pressures).");
+    prm.declare_entry("Force variation tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "If > 0: at the last step, the largest change of the "
+                      "total contact force of pair 1 between consecutive "
+                      "steps with t >= 'Friction ratio from time', relative "
+                      "to its mean magnitude over these steps, is checked "
+                      "against this value (no spikes from status "
+                      "chattering).");
     prm.declare_entry("Friction ratio from time",
                       "0",
                       Patterns::Double(0),
@@ -986,6 +1017,8 @@ namespace Signorini
     friction_ratio_normal  = to_doubles(prm.get("Friction ratio normal"));
     friction_ratio_tolerance = prm.get_double("Friction ratio tolerance");
     friction_ratio_from      = prm.get_double("Friction ratio from time");
+    friction_ratio_contact_frame = prm.get("Friction ratio frame") == "contact";
+    force_variation_tolerance = prm.get_double("Force variation tolerance");
     point_values.clear();
     for (const auto &entry : split_expressions(prm.get("Point values")))
       {

@@ -14,6 +14,8 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <signorini/core/simulation.h>
+
+#include <algorithm>
 #include <signorini/geometry/scene.h>
 #include <signorini/postprocess/stress_postprocessor.h>
 
@@ -482,7 +484,8 @@ namespace Signorini
                             constraints_update,
                             with_matrix ? &system_matrix : nullptr,
                             newton_rhs,
-                            contact_force);
+                            contact_force,
+                            !with_matrix);
       }
     if (with_matrix)
       system_matrix.compress(VectorOperation::add);
@@ -618,7 +621,10 @@ namespace Signorini
         // it between iterates would change the equations being solved and
         // spoil the quadratic convergence.
         if (contact->active() && iterations == 0)
-          contact->update_coefficients(state);
+          {
+            contact->update_coefficients(state);
+            contact->start_newton_solve();
+          }
         assemble(false);
         double block[3] = {0, 0, 0};
         for (const auto i : owned_system)
@@ -642,8 +648,16 @@ namespace Signorini
         };
         const bool statuses_settled =
           !contact->active() || contact_statistics.n_changed == 0;
-        const bool converged = small(block[0]) && small(block[1]) &&
-                               small(block[2]) && statuses_settled;
+        const bool residual_small =
+          small(block[0]) && small(block[1]) && small(block[2]);
+        // A frozen point (anti-cycling) that the plain law contradicts at
+        // the converged iterate is released; Newton goes on from there.
+        const bool release = residual_small && statuses_settled &&
+                             contact->active() &&
+                             contact_statistics.n_violated > 0;
+        const bool converged = residual_small && statuses_settled && !release;
+        cycle_detections += contact->active() ? contact_statistics.n_cycling : 0;
+        points_frozen += contact->active() ? contact_statistics.n_newly_frozen : 0;
         const auto relative = [&](const double r) {
           return force_scale > 0 ? r / force_scale : 0.;
         };
@@ -663,6 +677,10 @@ namespace Signorini
                   << st.n_changed;
             if (st.n_reversed > 0)
               pcout << " (slip reversed " << st.n_reversed << ")";
+            if (st.n_cycling > 0)
+              pcout << " cycling " << st.n_cycling;
+            if (st.n_frozen + st.n_newly_frozen > 0)
+              pcout << " frozen " << st.n_frozen + st.n_newly_frozen;
             pcout << (converged ? "  converged" : "") << std::endl;
           }
         else if (verbose)
@@ -680,9 +698,10 @@ namespace Signorini
               << format(relative(block[2]), 3);
           if (contact->active())
             row << "," << st.n_contact << "," << st.n_stick << ","
-                << st.n_slip << "," << st.n_changed << "," << st.n_reversed;
+                << st.n_slip << "," << st.n_changed << "," << st.n_reversed
+                << "," << st.n_cycling << "," << st.n_frozen + st.n_newly_frozen;
           else
-            row << ",0,0,0,0,0";
+            row << ",0,0,0,0,0,0,0";
           row << "," << (converged ? 1 : 0);
           newton_rows.push_back(row.str());
         }
@@ -694,6 +713,16 @@ namespace Signorini
           return true;
         if (iterations == parameters.newton.max_iterations)
           break;
+        if (release)
+          {
+            const unsigned int n = contact->release_frozen();
+            points_released += n;
+            if (show_contact)
+              pcout << "    released " << n
+                    << " frozen point(s) that the contact law contradicts"
+                    << std::endl;
+            continue; // re-evaluate the same iterate with the plain law
+          }
 
         assemble(true);
         TimerOutput::Scope t(timer, "linear solve");
@@ -1081,17 +1110,52 @@ namespace Signorini
                            "'Friction ratio normal': give a nonzero "
                            "direction.");
         n /= n.norm();
-        const Tensor<1, dim> F   = contact->summary()[0].force;
-        const double         F_n = F * n;
-        const double ratio = std::abs(F_n) > 0 ? (F - F_n * n).norm() /
-                                                   std::abs(F_n) :
-                                                 0.;
-        line("friction force ratio |F_t|/|F_n|",
+        const auto           summary = contact->summary()[0];
+        const Tensor<1, dim> F       = summary.force;
+        const double         F_n     = F * n;
+        double               ratio   = std::abs(F_n) > 0 ?
+                                         (F - F_n * n).norm() / std::abs(F_n) :
+                                         0.;
+        if (ref.friction_ratio_contact_frame)
+          ratio = summary.normal_force_local > 0 ?
+                    summary.tangential_force_local /
+                      summary.normal_force_local :
+                    0.;
+        line(ref.friction_ratio_contact_frame ?
+               "friction force ratio sum|f_t|/sum|f_n| (contact frames)" :
+               "friction force ratio |F_t|/|F_n|",
              ratio,
              ref.friction_ratio,
              std::abs(ratio - ref.friction_ratio) / ref.friction_ratio,
              ref.friction_ratio_tolerance,
              "relative error");
+      }
+    if (ref.force_variation_tolerance > 0 && time >= ref.friction_ratio_from)
+      {
+        steady_forces.push_back(contact->summary()[0].force);
+        const double t_final = parameters.load_stepping.step_times.back();
+        if (std::abs(time - t_final) <= 1e-12 * std::abs(t_final))
+          {
+            double mean = 0, jump = 0;
+            for (unsigned int k = 0; k < steady_forces.size(); ++k)
+              {
+                mean += steady_forces[k].norm() / steady_forces.size();
+                if (k > 0)
+                  jump = std::max(jump,
+                                  (steady_forces[k] - steady_forces[k - 1])
+                                    .norm());
+              }
+            const double e = mean > 0 ? jump / mean : 0.;
+            const bool pass = e <= ref.force_variation_tolerance &&
+                              steady_forces.size() > 1;
+            contact_checks_pass &= pass;
+            contact_checks.push_back(
+              "largest step-to-step change of the contact force over " +
+              std::to_string(steady_forces.size()) + " steps = " +
+              format(e, 2) + " of its mean (tolerance " +
+              format(ref.force_variation_tolerance, 1) +
+              "): " + (pass ? "PASS" : "FAIL"));
+          }
       }
     const char *axis[] = {"x", "y", "z"};
     for (const auto &pv : ref.point_values)
@@ -1183,15 +1247,27 @@ namespace Signorini
     std::vector<std::string> row = {std::to_string(step),
                                     format(time),
                                     std::to_string(newton_iterations),
+                                    std::to_string(step_cuts),
+                                    std::to_string(cycle_detections),
+                                    std::to_string(points_frozen),
                                     format(u_max)};
+    step_iterations.push_back(newton_iterations);
+    run_cuts += step_cuts;
+    run_cycles += cycle_detections;
+    run_frozen += points_frozen;
+    run_released += points_released;
     for (const auto &r : reactions)
       for (unsigned int d = 0; d < dim; ++d)
         row.push_back(format(r[d]));
     statistics_rows.push_back(row);
 
     const char *axis[] = {"x", "y", "z"};
-    pcout << "  Newton iterations: " << newton_iterations << "\n"
-          << "  max |u_i| = " << format(u_max) << "\n";
+    pcout << "  Newton iterations: " << newton_iterations << "\n";
+    if (cycle_detections + points_frozen + points_released > 0)
+      pcout << "  anti-cycling: " << cycle_detections
+            << " status cycle(s) detected, " << points_frozen
+            << " point(s) frozen, " << points_released << " released\n";
+    pcout << "  max |u_i| = " << format(u_max) << "\n";
     for (unsigned int k = 0; k < reactions.size(); ++k)
       {
         pcout << "  reaction Dirichlet " << k + 1 << " = (";
@@ -1239,7 +1315,8 @@ namespace Signorini
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::ofstream csv(parameters.output.directory + "/statistics.csv");
-        csv << "step,time,newton_iterations,max_abs_u";
+        csv << "step,time,newton_iterations,step_cuts,cycle_detections,"
+               "points_frozen,max_abs_u";
         for (unsigned int k = 0; k < reactions.size(); ++k)
           for (unsigned int d = 0; d < dim; ++d)
             csv << ",reaction_" << k + 1 << "_" << axis[d];
@@ -1257,7 +1334,7 @@ namespace Signorini
                               "/newton_history.csv");
         history << "step,time,geometric_iteration,newton_iteration,r_u,"
                    "r_lambda,r_Lambda,n_contact,n_stick,n_slip,n_changed,"
-                   "n_reversed,converged\n";
+                   "n_reversed,n_cycling,n_frozen,converged\n";
         for (const auto &r : newton_rows)
           history << r << "\n";
       }
@@ -1295,7 +1372,10 @@ namespace Signorini
     // Progress with elapsed and estimated remaining time (from the share of
     // the load path done), on a terminal only: log files and test outputs
     // stay reproducible.
-    const bool show_eta = isatty(STDOUT_FILENO) != 0;
+    // (Under OpenMPI the ranks' stdout is a pseudo-terminal even when
+    // mpirun's output goes to a file; their stderr is a pipe.)
+    const bool show_eta =
+      isatty(STDOUT_FILENO) != 0 && isatty(STDERR_FILENO) != 0;
     const auto start    = std::chrono::steady_clock::now();
     for (unsigned int step = 1; step <= times.size(); ++step)
       {
@@ -1318,6 +1398,7 @@ namespace Signorini
         // Sub-steps: the whole step first, halved after each failure.
         unsigned int cuts = 0, total_iterations = 0;
         double       t_target = times[step - 1];
+        cycle_detections = points_frozen = points_released = 0;
         while (t_done < times[step - 1])
           {
             unsigned int iterations = 0;
@@ -1336,6 +1417,8 @@ namespace Signorini
               }
             else
               {
+                // Failed attempts cost iterations too: they count.
+                total_iterations += iterations;
                 state = last_converged;
                 update_solution();
                 // Back to the initial state: the retry needs the initial
@@ -1357,6 +1440,7 @@ namespace Signorini
                 t_target = 0.5 * (t_done + t_target);
               }
           }
+        step_cuts = cuts;
         compute_reactions();
         compute_reference_errors(times[step - 1]);
         if (contact->active())
@@ -1370,6 +1454,22 @@ namespace Signorini
                  << std::setw(4) << std::setfill('0') << step << ".csv";
             contact->write_csv(name.str());
           }
+      }
+    if (times.size() > 1)
+      {
+        // Newton iterations per load step (all geometric iterations and
+        // cut attempts of the step that converged): median and maximum.
+        std::vector<unsigned int> sorted = step_iterations;
+        std::sort(sorted.begin(), sorted.end());
+        pcout << "Run summary: " << times.size()
+              << " load steps, Newton iterations per step median "
+              << sorted[sorted.size() / 2] << ", max " << sorted.back()
+              << ", step cuts " << run_cuts;
+        if (contact->active())
+          pcout << ", status cycles detected " << run_cycles
+                << ", points frozen " << run_frozen << ", released "
+                << run_released;
+        pcout << std::endl;
       }
     if (parameters.newton.check_jacobian && contact->active())
       pcout << "Jacobian check: largest relative error of the contact "

@@ -142,6 +142,28 @@ namespace Signorini
        * LawParameters::threshold_newton is false.
        */
       double lambda_f_frozen = 0.;
+
+      /**
+       * Anti-cycling (formulation.md 8, "status freeze"): keep the contact
+       * branch whatever the sign of lambda_aug. Set by the assembly for a
+       * point whose status cycled; false for the plain law.
+       */
+      bool freeze_contact = false;
+
+      /**
+       * Anti-cycling: if nonzero, a slip direction (unit tangent vector)
+       * that replaces h / |h| while the point is in contact with friction
+       * on. The slip branch is then smooth in the unknowns (K_B = 0).
+       * Zero for the plain law.
+       */
+      Tensor<1, dim> frozen_slip_direction;
+
+      /**
+       * Anti-cycling: keep the stick branch (P_B(h) = h even if |h| > 1)
+       * while the point is in contact with friction on. False for the
+       * plain law.
+       */
+      bool freeze_stick = false;
     };
 
 

@@ -63,6 +63,11 @@ namespace Signorini
       unsigned int n_slip     = 0;
       unsigned int n_changed  = 0; // status differs from the last evaluation
       unsigned int n_reversed = 0; // slip direction turned by > 90 degrees
+      // Anti-cycling (formulation.md 8), counted at new iterates only:
+      unsigned int n_cycling  = 0; // points back to their status of k-2
+      unsigned int n_frozen   = 0; // points whose status is frozen now
+      unsigned int n_newly_frozen = 0; // frozen at this evaluation
+      unsigned int n_violated = 0; // frozen, but the plain law disagrees
     };
 
     template <int dim>
@@ -147,9 +152,10 @@ namespace Signorini
        * p_ref the RMS of the nodal pressures -lambda above the zero threshold
        * nodes in @p state (kept from the last call while no node is
        * closed). Called once per Newton solve (its first residual), so
-       * that all iterates of one solve work on the same equations.
+       * that all iterates of one solve work on the same equations. Returns
+       * false while some frictional pair is still on the 1e-3 E guess.
        */
-      void
+      bool
       update_coefficients(const TrilinosWrappers::MPI::Vector &state);
 
       /** Every system index the contact terms touch with the current
@@ -184,13 +190,36 @@ namespace Signorini
                const AffineConstraints<double> &    constraints,
                TrilinosWrappers::SparseMatrix *     matrix,
                TrilinosWrappers::MPI::Vector &      rhs,
-               TrilinosWrappers::MPI::Vector &      contact_force);
+               TrilinosWrappers::MPI::Vector &      contact_force,
+               const bool                           new_iterate = false);
+
+      /**
+       * Anti-cycling (formulation.md 8). Each evaluation with @p new_iterate
+       * compares every point's status with its status two iterates back;
+       * a point that returns to it (A -> B -> A, stick/slip, contact/free
+       * or a slip reversal) has cycled. After 'Freeze after cycles' cycles
+       * in one Newton solve its status is frozen: a contact/free cycle keeps
+       * the point in contact, a stick/slip cycle keeps it slipping in its
+       * last slip direction, a slip reversal cycle (neither direction is
+       * consistent) keeps it sticking. Frozen points whose plain law
+       * disagrees at the converged iterate are counted (n_violated) and
+       * must be released by the caller. start_newton_solve() clears the
+       * history; release_frozen() lets every frozen point follow the plain
+       * law again (a point is frozen at most once per Newton solve).
+       */
+      void
+      start_newton_solve();
+      unsigned int
+      release_frozen();
 
       /** Per-pair results of the last evaluation, summed over ranks. */
       struct PairSummary
       {
         Tensor<1, dim> force;      // total contact force on the slave [N]
         double         p_max = 0;  // largest p = -lambda at a point [Pa]
+        // Sums of w |f . n| and w |P f| over the points, each in its own
+        // contact frame [N].
+        double normal_force_local = 0, tangential_force_local = 0;
         unsigned int   n_contact = 0, n_stick = 0, n_slip = 0, n_points = 0;
       };
       std::vector<PairSummary>
@@ -285,6 +314,15 @@ namespace Signorini
         // Last evaluation:
         PointStatus        status = PointStatus::free;
         bool               friction_active = false; // law branch, 3.3
+        // Anti-cycling history of the current Newton solve.
+        PointStatus    status_before = PointStatus::free; // iterate k-2
+        Tensor<1, dim> direction_before;  // slip direction at k-2
+        unsigned int   cycles     = 0;
+        unsigned int   changes    = 0;
+        bool           was_frozen = false;
+        bool           freeze_contact = false;
+        Tensor<1, dim> frozen_slip_direction; // zero: not frozen
+        bool           freeze_stick = false;
         Tensor<1, dim>     slip_direction;          // h / |h| if slipping
         double             gap = 0, lambda = 0;
         Tensor<1, dim - 1> Lambda, slip;
@@ -353,6 +391,8 @@ namespace Signorini
       std::vector<std::unique_ptr<RigidObstacle<dim>>> obstacles; // per pair
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
       std::vector<double> rho_n, rho_t, face_size, youngs;         // per pair
+      std::vector<bool>   rho_t_measured; // p_ref from pressures, per pair
+      unsigned int        iterates_recorded = 0; // in this Newton solve
 
       types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;
       unsigned int            n_nodes_total = 0;

@@ -211,6 +211,8 @@ namespace Signorini
     double              friction_ratio, friction_ratio_tolerance;
     double              friction_ratio_from; // first time checked
     std::vector<double> friction_ratio_normal;
+    bool                friction_ratio_contact_frame;
+    double              force_variation_tolerance; // 0: not checked
     double              half_width, half_width_tolerance;
     std::vector<double> contact_centre;
     std::string         contact_pressure;
@@ -292,6 +294,7 @@ namespace Signorini
     double                             projection_tolerance;
     double                             geometric_tolerance;
     unsigned int                       max_geometric_iterations;
+    unsigned int                       freeze_after_cycles; // 0: never
 
     static void declare_parameters(ParameterHandler &prm, const Counts &counts);
     void        parse_parameters(ParameterHandler &prm, const Counts &counts);

@@ -165,6 +165,14 @@ namespace Signorini
     // where the iterate belongs (load step, target time, geometric
     // iteration).
     std::vector<std::string> newton_rows;
+    // Anti-cycling and step-cut counts of the current load step, and the
+    // Newton iterations of every step (run summary).
+    unsigned int cycle_detections = 0, points_frozen = 0, points_released = 0,
+                 step_cuts = 0;
+    std::vector<unsigned int> step_iterations;
+    std::vector<Tensor<1, dim>> steady_forces; // Force variation check
+    unsigned int run_cuts = 0, run_cycles = 0, run_frozen = 0,
+                 run_released = 0;
     unsigned int             history_step = 0, history_geometric = 0;
     double                   history_time = 0;
   };
