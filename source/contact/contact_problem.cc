@@ -409,7 +409,6 @@ namespace Signorini
       // pressure is known p_ref = 1e-3 E.
       rho_n.assign(n_pairs, 0.);
       rho_t.assign(n_pairs, 0.);
-      rho_t_measured.assign(n_pairs, false);
       face_size.assign(n_pairs, 0.);
       youngs.assign(n_pairs, 0.);
       for (unsigned int p = 0; p < n_pairs; ++p)
@@ -952,7 +951,7 @@ namespace Signorini
 
 
     template <int dim>
-    bool
+    void
     ContactProblem<dim>::update_coefficients(
       const TrilinosWrappers::MPI::Vector &state)
     {
@@ -973,16 +972,9 @@ namespace Signorini
           const double s = Utilities::MPI::sum(sum2[p], comm);
           const double n = Utilities::MPI::sum(count[p], comm);
           if (pairs[p].friction > 0 && n > 0 && s > 0)
-            {
-              rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
-                         (pairs[p].friction * std::sqrt(s / n));
-              rho_t_measured[p] = true;
-            }
+            rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
+                       (pairs[p].friction * std::sqrt(s / n));
         }
-      for (unsigned int p = 0; p < pairs.size(); ++p)
-        if (pairs[p].friction > 0 && !rho_t_measured[p])
-          return false;
-      return true;
     }
 
 
@@ -1235,10 +1227,15 @@ namespace Signorini
                 (r.status == PointStatus::stick ? stats.n_stick :
                                                   stats.n_slip)++;
             }
-          const PointStatus status =
-            !r.in_contact ? PointStatus::free :
-                            (fric && r.friction_active ? r.status :
+          // The status label of a law response ('slip' also for a closed
+          // point without friction).
+          const auto label = [fric](const PointResponse<dim> &response) {
+            return !response.in_contact ?
+                     PointStatus::free :
+                     (fric && response.friction_active ? response.status :
                                                          PointStatus::slip);
+          };
+          const PointStatus status = label(r);
           // A point that closed with a zero threshold (friction inactive,
           // formulation.md 3.3) and one with friction on are different
           // branches of the law even when both are labelled 'slip'.
@@ -1262,11 +1259,8 @@ namespace Signorini
               plain.freeze_contact        = false;
               plain.frozen_slip_direction = Tensor<1, dim>();
               plain.freeze_stick          = false;
-              const auto rp = evaluate_contact_law(plain, law);
-              const PointStatus plain_status =
-                !rp.in_contact ?
-                  PointStatus::free :
-                  (fric && rp.friction_active ? rp.status : PointStatus::slip);
+              const auto        rp = evaluate_contact_law(plain, law);
+              const PointStatus plain_status = label(rp);
               ++stats.n_frozen;
               stats.n_violated += plain_status != status ||
                                   (status == PointStatus::slip &&
@@ -1459,9 +1453,7 @@ namespace Signorini
           point.cycles                = 0;
           point.changes               = 0;
           point.was_frozen            = false;
-          point.freeze_contact        = false;
-          point.frozen_slip_direction = Tensor<1, dim>();
-          point.freeze_stick          = false;
+          clear_freeze(point);
         }
     }
 
@@ -1475,9 +1467,7 @@ namespace Signorini
         if (point.freeze_contact)
           {
             ++n;
-            point.freeze_contact        = false;
-            point.frozen_slip_direction = Tensor<1, dim>();
-            point.freeze_stick          = false;
+            clear_freeze(point);
           }
       return Utilities::MPI::sum(n, comm);
     }

@@ -152,10 +152,9 @@ namespace Signorini
        * p_ref the RMS of the nodal pressures -lambda above the zero threshold
        * nodes in @p state (kept from the last call while no node is
        * closed). Called once per Newton solve (its first residual), so
-       * that all iterates of one solve work on the same equations. Returns
-       * false while some frictional pair is still on the 1e-3 E guess.
+       * that all iterates of one solve work on the same equations.
        */
-      bool
+      void
       update_coefficients(const TrilinosWrappers::MPI::Vector &state);
 
       /** Every system index the contact terms touch with the current
@@ -342,6 +341,15 @@ namespace Signorini
       LawParameters
       law_parameters(const unsigned int pair) const;
 
+      /** Back to the plain contact law at @p point (anti-cycling). */
+      static void
+      clear_freeze(ContactPoint &point)
+      {
+        point.freeze_contact        = false;
+        point.frozen_slip_direction = Tensor<1, dim>();
+        point.freeze_stick          = false;
+      }
+
       /** A contact point of slave face @p f at @p xi with rule weight
        * @p w on the unit face (shape values, position, weight, normal). */
       ContactPoint
@@ -391,7 +399,6 @@ namespace Signorini
       std::vector<std::unique_ptr<RigidObstacle<dim>>> obstacles; // per pair
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
       std::vector<double> rho_n, rho_t, face_size, youngs;         // per pair
-      std::vector<bool>   rho_t_measured; // p_ref from pressures, per pair
       unsigned int        iterates_recorded = 0; // in this Newton solve
 
       types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;
