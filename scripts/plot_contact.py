@@ -1,5 +1,6 @@
-"""Contact pressure of the Hertz benchmarks against the Hertz solution, and
-the Newton convergence history of the benchmark runs.
+"""Contact pressure of the Hertz benchmarks against the Hertz solution, the
+Newton convergence history of the benchmark runs, and force-displacement
+curves (Cattaneo-Mindlin load cycle, B4 ironing) from statistics.csv.
 
 Usage: plot_contact.py RUN_DIRECTORY FIGURE_DIRECTORY
 RUN_DIRECTORY holds one output directory per case (see scripts/plot). The
@@ -23,6 +24,8 @@ CASES = {
                        lambda r: abs(r["x"])),
     "hertz_3d": ("Hertz 3D, sphere on block (mortar rule)", 7.2827e9, 9.914e-3,
                  lambda r: math.hypot(r["x"], r["z"])),
+    "gmsh_hertz_2d": ("B2 Hertz 2D on a Gmsh mesh (two bodies, one file)",
+                      3.585e9, 6.21e-3, lambda r: abs(r["x"])),
 }
 
 
@@ -97,6 +100,77 @@ def plot_newton_history(runs, figures):
 HISTORY = ["b2_hertz_2d", "hertz_2d_rigid", "b3_ssnv128", "hertz_3d"]
 
 
+def statistics(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def plot_hysteresis(runs, figures):
+    """Tangential force against the sideways displacement of the cylinder's
+    top in the Cattaneo-Mindlin load cycle (prm/cattaneo_mindlin_2d.prm),
+    with the stick-zone size of each step."""
+    path = runs / "cattaneo_mindlin_2d" / "statistics.csv"
+    if not path.exists():
+        return
+    rows = [r for r in statistics(path) if r["time"] >= 1.0]
+    d = [r["displacement_1_x"] * 1e6 for r in rows]
+    q = [r["reaction_1_x"] / 1e6 for r in rows]
+    mu_p = [0.3 * abs(r["contact_force_1_y"]) / 1e6 for r in rows]
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4))
+    ax.plot([0] + d, [0] + q, "o-", ms=4, label="Signorini (one point per load step)")
+    ax.axhline(max(mu_p), color="k", ls="--", lw=0.8, label="full sliding, $\\pm\\mu P$")
+    ax.axhline(-max(mu_p), color="k", ls="--", lw=0.8)
+    ax.set_xlabel("sideways displacement of the cylinder top [$\\mu$m]")
+    ax.set_ylabel("tangential force Q [MN/m]")
+    ax.set_title("Cattaneo-Mindlin load cycle")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    # The loop is thin beside the elastic stiffness of the bodies: remove
+    # the initial (all-stick) stiffness to show it.
+    first = next(i for i, di in enumerate(d) if di != 0)
+    k = q[first] / d[first]
+    bx.plot([0] + d, [0] + [qi - k * di for qi, di in zip(q, d)], "o-", ms=4)
+    bx.set_xlabel("sideways displacement of the cylinder top [$\\mu$m]")
+    bx.set_ylabel("Q - k d [MN/m], k the all-stick stiffness")
+    bx.set_title("the same, less the initial stiffness: hysteresis")
+    bx.grid(alpha=0.3)
+    fig.tight_layout()
+    out = figures / "cattaneo_mindlin_hysteresis.png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print("wrote", out)
+
+
+def plot_ironing_forces(runs, figures):
+    """Contact force components on the slab against the die's travel in B4
+    (prm/b4_ironing.prm)."""
+    path = runs / "b4_ironing" / "statistics.csv"
+    if not path.exists():
+        return
+    rows = statistics(path)
+    s = [r["obstacle_displacement_1_x"] for r in rows]
+    fx = [abs(r["contact_force_1_x"]) for r in rows]
+    fy = [abs(r["contact_force_1_y"]) for r in rows]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    press = [i for i, r in enumerate(rows) if r["time"] <= 1.0]
+    ax.plot(s, fy, "o-", ms=3, label="$|F_y|$ (normal to the slab)")
+    ax.plot(s, fx, "s-", ms=3, label="$|F_x|$ (along the slab)")
+    ax.plot([s[i] for i in press], [fy[i] for i in press], "ko", ms=3,
+            mfc="none", label="pressing steps (die travel 0)")
+    ax.set_xlabel("die travel along the slab")
+    ax.set_ylabel("contact force on the slab")
+    ax.set_title("B4 ironing: contact force per load step")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    out = figures / "b4_ironing_forces.png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print("wrote", out)
+
+
 if __name__ == "__main__":
     main()
     plot_newton_history(Path(sys.argv[1]), Path(sys.argv[2]))
+    plot_hysteresis(Path(sys.argv[1]), Path(sys.argv[2]))
+    plot_ironing_forces(Path(sys.argv[1]), Path(sys.argv[2]))

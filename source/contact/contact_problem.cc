@@ -851,14 +851,16 @@ namespace Signorini
                   face_shape_values<dim>(n_face_nodes, best.xi, point.N_m);
                 }
             }
+          // The contact normal points into the master (formulation.md 2),
+          // along the slave's outward normal.
           if (!point.paired)
-            point.normal = -point.slave_normal;
+            point.normal = point.slave_normal;
           // Normal choice (nodal rule only, checked at input).
           if (contact.normal == NormalChoice::slave)
-            point.normal = -point.slave_normal;
+            point.normal = point.slave_normal;
           else if (contact.normal == NormalChoice::average && point.paired)
             {
-              point.normal -= point.slave_normal;
+              point.normal += point.slave_normal;
               point.normal /= point.normal.norm();
             }
           point.tangents = tangent_basis<dim>(point.normal);
@@ -1495,6 +1497,12 @@ namespace Signorini
           r.n_stick += point.status == PointStatus::stick;
           r.n_slip += point.status == PointStatus::slip;
         }
+      for (unsigned int p = 0; p < result.size(); ++p)
+        if (obstacles[p])
+          {
+            result[p].rigid                 = true;
+            result[p].obstacle_displacement = obstacles[p]->get_translation();
+          }
       for (auto &r : result)
         {
           r.force     = Utilities::MPI::sum(r.force, comm);

@@ -975,6 +975,20 @@ namespace Signorini
                       "to its mean magnitude over these steps, is checked "
                       "against this value (no spikes from status "
                       "chattering).");
+    prm.declare_entry(
+      "Stick zone",
+      "none",
+      Patterns::Selection("none|cattaneo-mindlin"),
+      "cattaneo-mindlin: at every step with a tangential force, the half-width "
+      "c of the stick zone of pair 1 (around 'Contact centre') is checked "
+      "against Cattaneo-Mindlin partial slip under a constant normal force P, "
+      "c = a (1 - |Q|/(mu P))^(1/m) while Q grows from 0 (first loading) and "
+      "c = a (1 - |Q - Q*|/(2 mu P))^(1/m) after the tangential force Q "
+      "turned at Q* (Masing), m = 2 in 2D (cylinder) and 3 in 3D (sphere); a "
+      "is the measured contact half-width, P and Q the contact force of pair "
+      "1 along 'Friction ratio normal' and across it, tolerance 'Half-width "
+      "tolerance'. Valid for elastically similar bodies (no coupling of the "
+      "normal and tangential problems).");
     prm.declare_entry("Friction ratio from time",
                       "0",
                       Patterns::Double(0),
@@ -1019,6 +1033,7 @@ namespace Signorini
     friction_ratio_from      = prm.get_double("Friction ratio from time");
     friction_ratio_contact_frame = prm.get("Friction ratio frame") == "contact";
     force_variation_tolerance = prm.get_double("Force variation tolerance");
+    cattaneo_mindlin = prm.get("Stick zone") == "cattaneo-mindlin";
     point_values.clear();
     for (const auto &entry : split_expressions(prm.get("Point values")))
       {

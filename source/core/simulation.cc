@@ -93,8 +93,10 @@ namespace Signorini
     , pcout(std::cout,
             Utilities::MPI::this_mpi_process(mpi_communicator) == 0 &&
               parameters.output.verbosity != Verbosity::quiet)
+    , sout(std::cout,
+           Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
     , timer(mpi_communicator,
-            pcout,
+            sout,
             TimerOutput::never,
             TimerOutput::wall_times)
     , triangulation(mpi_communicator,
@@ -868,11 +870,27 @@ namespace Signorini
   Simulation<dim>::compute_reactions()
   {
     reactions.assign(dirichlet_dofs.size(), Tensor<1, dim>());
+    dirichlet_displacement.assign(dirichlet_dofs.size(), Tensor<1, dim>());
+    dirichlet_components.assign(dirichlet_dofs.size(), {});
     for (unsigned int k = 0; k < dirichlet_dofs.size(); ++k)
       {
+        Tensor<1, dim> count;
         for (const auto &[dof, component] : dirichlet_dofs[k])
-          reactions[k][component] +=
-            internal_force[dof] - external_force[dof] + contact_force[dof];
+          {
+            reactions[k][component] +=
+              internal_force[dof] - external_force[dof] + contact_force[dof];
+            dirichlet_displacement[k][component] += solution[dof];
+            count[component] += 1;
+          }
+        count = Utilities::MPI::sum(count, mpi_communicator);
+        dirichlet_displacement[k] =
+          Utilities::MPI::sum(dirichlet_displacement[k], mpi_communicator);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            dirichlet_components[k][d] = count[d] > 0;
+            if (count[d] > 0)
+              dirichlet_displacement[k][d] /= count[d];
+          }
         // Round-off (relative to the force level) is printed as zero so the
         // output does not depend on the number of MPI ranks.
         for (unsigned int d = 0; d < dim; ++d)
@@ -1014,6 +1032,118 @@ namespace Signorini
 
   // Contact checks of the Reference solution subsection: p0, half-width,
   // pressure profile (relative L2 over the contact points), point values.
+  namespace
+  {
+  // Half-width of the closed (stick_only = false) or sticking zone around
+  // centre: halfway between the farthest point of the zone and the nearest
+  // point beyond it that is not in the zone (the zone's farthest point if
+  // there is none).
+  template <int dim>
+  double
+  zone_half_width(
+    const std::vector<typename Contact::ContactProblem<dim>::PointRecord>
+                     &records,
+    const Point<dim> &centre,
+    const bool        stick_only)
+  {
+    const auto inside = [stick_only](const auto &r) {
+      return stick_only ? r.status == Contact::PointStatus::stick :
+                          r.status != Contact::PointStatus::free;
+    };
+    double in = 0;
+    for (const auto &r : records)
+      if (inside(r))
+        in = std::max(in, r.x.distance(centre));
+    double out = std::numeric_limits<double>::max();
+    for (const auto &r : records)
+      if (!inside(r) && r.x.distance(centre) > in)
+        out = std::min(out, r.x.distance(centre));
+    return out < std::numeric_limits<double>::max() ? 0.5 * (in + out) : in;
+  }
+  } // namespace
+
+
+  // Cattaneo-Mindlin partial slip (Johnson, Contact Mechanics, 7.1-7.2):
+  // under a constant normal force P and a tangential force Q below mu P the
+  // contact sticks in a central zone of half-width c = a (1 - Q/(mu P))^(1/m)
+  // (m = 2 cylinder, 3 sphere); after Q turns at Q*, the new stick zone is
+  // that of first loading with (Q* - Q)/2 (Masing).
+  template <int dim>
+  void
+  Simulation<dim>::check_stick_zone(
+    const std::vector<typename Contact::ContactProblem<dim>::PointRecord>
+      &records)
+  {
+    const auto &ref = parameters.reference;
+    Tensor<1, dim> n;
+    for (unsigned int d = 0; d < dim && d < ref.friction_ratio_normal.size();
+         ++d)
+      n[d] = ref.friction_ratio_normal[d];
+    if (n.norm() == 0)
+      throw InputError("subsection 'Reference solution', parameter "
+                       "'Friction ratio normal': give a nonzero direction.");
+    n /= n.norm();
+    const double         mu = parameters.contact.pairs[0].friction;
+    const Tensor<1, dim> F  = contact->summary()[0].force;
+    const double         P  = std::abs(F * n);
+    const Tensor<1, dim> F_t = F - (F * n) * n;
+    if (mu == 0 || P == 0)
+      return;
+    // The tangent: across n in 2D, the first tangential force's direction
+    // in 3D.
+    if (mindlin_tangent.norm() == 0)
+      {
+        if (dim == 2)
+          {
+            mindlin_tangent[0] = n[1];
+            mindlin_tangent[1] = -n[0];
+          }
+        else if (F_t.norm() > 1e-6 * mu * P)
+          mindlin_tangent = F_t / F_t.norm();
+        else
+          return;
+      }
+    const double Q     = F * mindlin_tangent;
+    const double small = 1e-6 * mu * P;
+    if (mindlin_direction == 0 && std::abs(Q) > small)
+      mindlin_direction = Q > 0 ? 1 : -1;
+    else if (mindlin_direction != 0 &&
+             (Q - mindlin_q_last) * mindlin_direction < -small)
+      {
+        mindlin_q_turn    = mindlin_q_last;
+        mindlin_turned    = true;
+        mindlin_direction = -mindlin_direction;
+      }
+    mindlin_q_last = Q;
+    if (mindlin_direction == 0)
+      return; // no tangential load yet
+
+    const double load = mindlin_turned ?
+                          std::abs(Q - mindlin_q_turn) / (2 * mu * P) :
+                          std::abs(Q) / (mu * P);
+    Point<dim> centre;
+    for (unsigned int d = 0; d < dim && d < ref.contact_centre.size(); ++d)
+      centre[d] = ref.contact_centre[d];
+    const double a = zone_half_width<dim>(records, centre, false);
+    const double c = zone_half_width<dim>(records, centre, true);
+    const double c_ref =
+      load < 1 ? a * std::pow(1 - load, 1. / (dim == 2 ? 2 : 3)) : 0.;
+    const double error = std::abs(c - c_ref);
+    const bool   pass  = error <= ref.half_width_tolerance;
+    contact_checks_pass &= pass;
+    std::ostringstream what;
+    what << "stick zone half-width c = " << format(c, 4) << ", c/a = "
+         << std::fixed << std::setprecision(3) << (a > 0 ? c / a : 0.)
+         << " (Cattaneo-Mindlin, "
+         << (mindlin_turned ? "|Q - Q*|/(2 mu P)" : "Q/(mu P)") << " = "
+         << load << std::defaultfloat << ": c = " << format(c_ref, 4)
+         << ") absolute error " << format(error, 2) << " (tolerance "
+         << format(ref.half_width_tolerance, 1)
+         << "): " << (pass ? "PASS" : "FAIL");
+    contact_checks.push_back(what.str());
+  }
+
+
   template <int dim>
   void
   Simulation<dim>::check_contact_references(const double time)
@@ -1036,7 +1166,8 @@ namespace Signorini
                                (pass ? "PASS" : "FAIL"));
     };
     const bool needs_points = ref.max_pressure > 0 || ref.half_width > 0 ||
-                              !ref.contact_pressure.empty();
+                              !ref.contact_pressure.empty() ||
+                              ref.cattaneo_mindlin;
     const auto records =
       needs_points ? contact->gather_points() :
                      std::vector<typename Contact::ContactProblem<
@@ -1058,18 +1189,7 @@ namespace Signorini
         Point<dim> centre;
         for (unsigned int d = 0; d < dim && d < ref.contact_centre.size(); ++d)
           centre[d] = ref.contact_centre[d];
-        double closed = 0;
-        for (const auto &r : records)
-          if (r.status != Contact::PointStatus::free)
-            closed = std::max(closed, r.x.distance(centre));
-        double open = std::numeric_limits<double>::max();
-        for (const auto &r : records)
-          if (r.status == Contact::PointStatus::free &&
-              r.x.distance(centre) > closed)
-            open = std::min(open, r.x.distance(centre));
-        const double a =
-          open < std::numeric_limits<double>::max() ? 0.5 * (closed + open) :
-                                                      closed;
+        const double a = zone_half_width(records, centre, false);
         line("contact half-width a",
              a,
              ref.half_width,
@@ -1077,6 +1197,8 @@ namespace Signorini
              ref.half_width_tolerance,
              "absolute error");
       }
+    if (ref.cattaneo_mindlin)
+      check_stick_zone(records);
     if (!ref.contact_pressure.empty())
       {
         auto exact = make_function<dim>({ref.contact_pressure},
@@ -1256,12 +1378,58 @@ namespace Signorini
     run_cycles += cycle_detections;
     run_frozen += points_frozen;
     run_released += points_released;
-    for (const auto &r : reactions)
-      for (unsigned int d = 0; d < dim; ++d)
-        row.push_back(format(r[d]));
+    const char *axis[] = {"x", "y", "z"};
+    const bool  header = statistics_header.empty();
+    if (header)
+      statistics_header = {"step",
+                           "time",
+                           "newton_iterations",
+                           "step_cuts",
+                           "cycle_detections",
+                           "points_frozen",
+                           "max_abs_u"};
+    const auto add_text = [&](const std::string &name, std::string value) {
+      if (header)
+        statistics_header.push_back(name);
+      row.push_back(std::move(value));
+    };
+    const auto add = [&](const std::string &name, const double value) {
+      add_text(name, format(value));
+    };
+    // Force-displacement data: each Dirichlet condition's reaction and the
+    // mean displacement it prescribes (constrained components only), each
+    // contact pair's force on the slave, closed points and, for a rigid
+    // obstacle, its prescribed motion.
+    for (unsigned int k = 0; k < reactions.size(); ++k)
+      {
+        const std::string name = "_" + std::to_string(k + 1) + "_";
+        for (unsigned int d = 0; d < dim; ++d)
+          add("reaction" + name + axis[d], reactions[k][d]);
+        for (unsigned int d = 0; d < dim; ++d)
+          if (dirichlet_components[k][d])
+            add("displacement" + name + axis[d], dirichlet_displacement[k][d]);
+      }
+    if (contact->active())
+      {
+        const auto summary = contact->summary();
+        for (unsigned int p = 0; p < summary.size(); ++p)
+          {
+            const std::string name = "_" + std::to_string(p + 1) + "_";
+            for (unsigned int d = 0; d < dim; ++d)
+              add("contact_force" + name + axis[d],
+                  std::abs(summary[p].force[d]) < 1e-10 * force_scale ?
+                    0. :
+                    summary[p].force[d]);
+            add_text("contact_points" + name + "closed",
+                     std::to_string(summary[p].n_contact));
+            if (summary[p].rigid)
+              for (unsigned int d = 0; d < dim; ++d)
+                add("obstacle_displacement" + name + axis[d],
+                    summary[p].obstacle_displacement[d]);
+          }
+      }
     statistics_rows.push_back(row);
 
-    const char *axis[] = {"x", "y", "z"};
     pcout << "  Newton iterations: " << newton_iterations << "\n";
     if (cycle_detections + points_frozen + points_released > 0)
       pcout << "  anti-cycling: " << cycle_detections
@@ -1276,13 +1444,18 @@ namespace Signorini
         pcout << ")\n";
       }
     const auto &ref = parameters.reference;
-    const auto  report = [&](const char *what, const double e) {
+    // The step's reference checks, also kept for the end of a quiet run.
+    last_checks.clear();
+    const auto check_line = [&](const std::string &text) {
+      last_checks.push_back(text);
+      pcout << "  reference check: " << text << "\n";
+    };
+    const auto report = [&](const char *what, const double e) {
       if (e < 0)
         return;
-      pcout << "  reference check: " << what << " = "
-            << format(std::max(e, 1e-16), 1) << " (tolerance "
-            << format(ref.tolerance, 1)
-            << "): " << (e <= ref.tolerance ? "PASS" : "FAIL") << "\n";
+      check_line(std::string(what) + " = " + format(std::max(e, 1e-16), 1) +
+                 " (tolerance " + format(ref.tolerance, 1) +
+                 "): " + (e <= ref.tolerance ? "PASS" : "FAIL"));
     };
     report("displacement L2 relative error", errors.displacement_l2_relative);
     report("stress max relative error", errors.stress_max_relative);
@@ -1307,7 +1480,7 @@ namespace Signorini
             pcout << "), max p = " << format(s.p_max, 4) << "\n";
           }
         for (const auto &line : contact_checks)
-          pcout << "  reference check: " << line << "\n";
+          check_line(line);
       }
     pcout << std::flush;
 
@@ -1315,11 +1488,8 @@ namespace Signorini
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::ofstream csv(parameters.output.directory + "/statistics.csv");
-        csv << "step,time,newton_iterations,step_cuts,cycle_detections,"
-               "points_frozen,max_abs_u";
-        for (unsigned int k = 0; k < reactions.size(); ++k)
-          for (unsigned int d = 0; d < dim; ++d)
-            csv << ",reaction_" << k + 1 << "_" << axis[d];
+        for (unsigned int c = 0; c < statistics_header.size(); ++c)
+          csv << (c ? "," : "") << statistics_header[c];
         csv << "\n";
         for (const auto &r : statistics_rows)
           {
@@ -1455,24 +1625,32 @@ namespace Signorini
             contact->write_csv(name.str());
           }
       }
+    // What even a quiet run prints (sout): the last step's reference
+    // checks, the run summary, the Jacobian check, timing and memory.
+    if (parameters.output.verbosity == Verbosity::quiet)
+      {
+        sout << "Final step, t = " << format(times.back(), 4) << "\n";
+        for (const auto &line : last_checks)
+          sout << "  reference check: " << line << "\n";
+      }
     if (times.size() > 1)
       {
         // Newton iterations per load step (all geometric iterations and
         // cut attempts of the step that converged): median and maximum.
         std::vector<unsigned int> sorted = step_iterations;
         std::sort(sorted.begin(), sorted.end());
-        pcout << "Run summary: " << times.size()
+        sout << "Run summary: " << times.size()
               << " load steps, Newton iterations per step median "
               << sorted[sorted.size() / 2] << ", max " << sorted.back()
               << ", step cuts " << run_cuts;
         if (contact->active())
-          pcout << ", status cycles detected " << run_cycles
-                << ", points frozen " << run_frozen << ", released "
-                << run_released;
-        pcout << std::endl;
+          sout << ", status cycles detected " << run_cycles
+               << ", points frozen " << run_frozen << ", released "
+               << run_released;
+        sout << std::endl;
       }
     if (parameters.newton.check_jacobian && contact->active())
-      pcout << "Jacobian check: largest relative error of the contact "
+      sout << "Jacobian check: largest relative error of the contact "
                "Jacobian over the run = "
             << std::scientific << std::setprecision(1) << jacobian_error_max
             << " (tolerance 1.0e-06): "
@@ -1485,7 +1663,7 @@ namespace Signorini
         Utilities::System::MemoryStats memory;
         Utilities::System::get_memory_stats(memory);
         const double mb = memory.VmHWM / 1024.;
-        pcout << "Peak memory: " << std::fixed << std::setprecision(1)
+        sout << "Peak memory: " << std::fixed << std::setprecision(1)
               << Utilities::MPI::max(mb, mpi_communicator)
               << " MB on the largest rank, "
               << Utilities::MPI::sum(mb, mpi_communicator) << " MB over "

@@ -220,6 +220,8 @@ namespace Signorini
         // contact frame [N].
         double normal_force_local = 0, tangential_force_local = 0;
         unsigned int   n_contact = 0, n_stick = 0, n_slip = 0, n_points = 0;
+        bool           rigid = false;          // master is a rigid obstacle
+        Tensor<1, dim> obstacle_displacement;  // its prescribed motion [m]
       };
       std::vector<PairSummary>
       summary() const;

@@ -213,6 +213,7 @@ namespace Signorini
     std::vector<double> friction_ratio_normal;
     bool                friction_ratio_contact_frame;
     double              force_variation_tolerance; // 0: not checked
+    bool                cattaneo_mindlin; // stick zone check
     double              half_width, half_width_tolerance;
     std::vector<double> contact_centre;
     std::string         contact_pressure;

@@ -98,6 +98,10 @@ namespace Signorini
     void
     check_contact_references(const double time);
     void
+    check_stick_zone(
+      const std::vector<typename Contact::ContactProblem<dim>::PointRecord>
+        &records);
+    void
     compute_reactions();
     void
     compute_reference_errors(const double time);
@@ -111,7 +115,8 @@ namespace Signorini
     const Parameters &      parameters;
     const ParameterHandler &prm;
     MPI_Comm                mpi_communicator;
-    ConditionalOStream      pcout;
+    ConditionalOStream      pcout; // per-step output (off when quiet)
+    ConditionalOStream      sout;  // end-of-run summary (always, rank 0)
     TimerOutput             timer;
 
     parallel::distributed::Triangulation<dim> triangulation;
@@ -153,11 +158,18 @@ namespace Signorini
     Contact::ContactStatistics    contact_statistics;
     bool                          first_pairing = true;
     std::vector<std::string>      contact_checks; // printed after each step
+    std::vector<std::string>      last_checks;    // all checks, last step
     bool                          contact_checks_pass = true;
     double                        jacobian_error_max  = 0; // Check Jacobian
 
     double                           force_scale = 0;
     std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
+    // Mean displacement of the DoFs each Dirichlet condition constrains,
+    // per component, and which components it constrains (statistics.csv:
+    // force-displacement curves).
+    std::vector<Tensor<1, dim>>          dirichlet_displacement;
+    std::vector<std::array<bool, dim>>   dirichlet_components;
+    std::vector<std::string>             statistics_header;
     ReferenceErrors                  errors;
     std::vector<std::pair<double, std::string>> pvtu_records;
     std::vector<std::vector<std::string>>       statistics_rows;
@@ -171,6 +183,12 @@ namespace Signorini
                  step_cuts = 0;
     std::vector<unsigned int> step_iterations;
     std::vector<Tensor<1, dim>> steady_forces; // Force variation check
+    // Stick zone check: tangent of the tangential force, its last value,
+    // loading direction (+1/-1, 0 before loading) and last turning point.
+    Tensor<1, dim> mindlin_tangent;
+    double         mindlin_q_last = 0, mindlin_q_turn = 0;
+    int            mindlin_direction = 0;
+    bool           mindlin_turned    = false;
     unsigned int run_cuts = 0, run_cycles = 0, run_frozen = 0,
                  run_released = 0;
     unsigned int             history_step = 0, history_geometric = 0;
