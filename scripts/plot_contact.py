@@ -141,6 +141,56 @@ def plot_hysteresis(runs, figures):
     print("wrote", out)
 
 
+def plot_mindlin_traction(runs, figures):
+    """Tangential traction along the contact in the Cattaneo-Mindlin run at
+    the first-loading step with Q/(mu P) closest to 0.6, against the
+    analytic profile (Johnson 7.2) for the computed P and Q."""
+    run = runs / "cattaneo_mindlin_2d"
+    path = run / "statistics.csv"
+    if not path.exists():
+        return
+    mu, R, E, nu = 0.3, 0.1, 2.1e11, 0.3
+    rows = [r for r in statistics(path) if 1.0 < r["time"] <= 2.0]
+    ratio = lambda r: abs(r["contact_force_1_x"]) / (mu * abs(r["contact_force_1_y"]))
+    row = min(rows, key=lambda r: abs(ratio(r) - 0.6))
+    P, Q = abs(row["contact_force_1_y"]), abs(row["contact_force_1_x"])
+    e_star = E / (2 * (1 - nu ** 2))
+    a = math.sqrt(4 * P * R / (math.pi * e_star))
+    p0 = 2 * P / (math.pi * a)
+    c = a * math.sqrt(1 - Q / (mu * P))
+
+    def q_exact(x):
+        q = mu * p0 * math.sqrt(max(0.0, 1 - (x / a) ** 2))
+        if abs(x) < c:
+            q -= mu * p0 * (c / a) * math.sqrt(1 - (x / c) ** 2)
+        return q
+
+    with open(run / f"contact_{int(row['step']):04d}.csv") as f:
+        pts = [r for r in csv.DictReader(f) if r["status"] != "free"]
+    xs = sorted({(float(r["x"]), abs(float(r["traction_t1"])), r["status"]) for r in pts})
+    grid = [-1.3 * a + 2.6 * a * i / 400 for i in range(401)]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot([x * 1e3 for x in grid], [q_exact(x) / 1e6 for x in grid], "k-",
+            label="Cattaneo-Mindlin (Hertz a, p0 for the computed P)")
+    ax.plot([x * 1e3 for x in grid],
+            [mu * p0 * math.sqrt(max(0.0, 1 - (x / a) ** 2)) / 1e6 for x in grid],
+            "k:", lw=0.8, label="$\\mu p$ (Hertz)")
+    for status, marker in (("stick", "o"), ("slip", "s")):
+        sel = [(x, q) for x, q, st in xs if st == status]
+        ax.plot([x * 1e3 for x, _ in sel], [q / 1e6 for _, q in sel], marker,
+                ms=5, label=f"Signorini, {status} nodes")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("tangential traction |q| [MPa]")
+    ax.set_title(f"Partial slip, Q/($\\mu$P) = {Q / (mu * P):.2f}: c/a = {c / a:.2f}")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    out = figures / "cattaneo_mindlin_traction.png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print("wrote", out)
+
+
 def plot_ironing_forces(runs, figures):
     """Contact force components on the slab against the die's travel in B4
     (prm/b4_ironing.prm)."""
@@ -173,4 +223,5 @@ if __name__ == "__main__":
     main()
     plot_newton_history(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_hysteresis(Path(sys.argv[1]), Path(sys.argv[2]))
+    plot_mindlin_traction(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_ironing_forces(Path(sys.argv[1]), Path(sys.argv[2]))
