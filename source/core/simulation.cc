@@ -1060,6 +1060,21 @@ namespace Signorini
         out = std::min(out, r.x.distance(centre));
     return out < std::numeric_limits<double>::max() ? 0.5 * (in + out) : in;
   }
+
+  // Unit normal of 'Friction ratio normal' (Reference solution).
+  template <int dim>
+  Tensor<1, dim>
+  reference_normal(const ReferenceParameters &ref)
+  {
+    Tensor<1, dim> n;
+    for (unsigned int d = 0; d < dim && d < ref.friction_ratio_normal.size();
+         ++d)
+      n[d] = ref.friction_ratio_normal[d];
+    if (n.norm() == 0)
+      throw InputError("subsection 'Reference solution', parameter "
+                       "'Friction ratio normal': give a nonzero direction.");
+    return n / n.norm();
+  }
   } // namespace
 
 
@@ -1074,15 +1089,8 @@ namespace Signorini
     const std::vector<typename Contact::ContactProblem<dim>::PointRecord>
       &records)
   {
-    const auto &ref = parameters.reference;
-    Tensor<1, dim> n;
-    for (unsigned int d = 0; d < dim && d < ref.friction_ratio_normal.size();
-         ++d)
-      n[d] = ref.friction_ratio_normal[d];
-    if (n.norm() == 0)
-      throw InputError("subsection 'Reference solution', parameter "
-                       "'Friction ratio normal': give a nonzero direction.");
-    n /= n.norm();
+    const auto          &ref = parameters.reference;
+    const Tensor<1, dim> n   = reference_normal<dim>(ref);
     const double         mu = parameters.contact.pairs[0].friction;
     const Tensor<1, dim> F  = contact->summary()[0].force;
     const double         P  = std::abs(F * n);
@@ -1223,15 +1231,7 @@ namespace Signorini
       }
     if (ref.friction_ratio > 0 && time >= ref.friction_ratio_from)
       {
-        Tensor<1, dim> n;
-        for (unsigned int d = 0; d < dim && d < ref.friction_ratio_normal.size();
-             ++d)
-          n[d] = ref.friction_ratio_normal[d];
-        if (n.norm() == 0)
-          throw InputError("subsection 'Reference solution', parameter "
-                           "'Friction ratio normal': give a nonzero "
-                           "direction.");
-        n /= n.norm();
+        const Tensor<1, dim> n = reference_normal<dim>(ref);
         const auto           summary = contact->summary()[0];
         const Tensor<1, dim> F       = summary.force;
         const double         F_n     = F * n;
