@@ -213,7 +213,6 @@ namespace Signorini
         T_Lambda += state.Lambda[k] * T[k];
       const Tensor<1, dim> h      = T_Lambda + rho_t * v;
       const double         norm_h = h.norm();
-      response.norm_h             = norm_h;
 
       // s = -mu lambda_f of section 5, written as -mu lambda_f throughout.
       const double mu_lf = mu * lambda_f;

@@ -1061,6 +1061,17 @@ namespace Signorini
     return out < std::numeric_limits<double>::max() ? 0.5 * (in + out) : in;
   }
 
+  // 'Contact centre' (Reference solution) as a point.
+  template <int dim>
+  Point<dim>
+  reference_centre(const ReferenceParameters &ref)
+  {
+    Point<dim> centre;
+    for (unsigned int d = 0; d < dim && d < ref.contact_centre.size(); ++d)
+      centre[d] = ref.contact_centre[d];
+    return centre;
+  }
+
   // Unit normal of 'Friction ratio normal' (Reference solution).
   template <int dim>
   Tensor<1, dim>
@@ -1129,10 +1140,8 @@ namespace Signorini
     const double load = mindlin_turned ?
                           std::abs(Q - mindlin_q_turn) / (2 * mu * P) :
                           std::abs(Q) / (mu * P);
-    Point<dim> centre;
-    for (unsigned int d = 0; d < dim && d < ref.contact_centre.size(); ++d)
-      centre[d] = ref.contact_centre[d];
-    const double a = zone_half_width<dim>(records, centre, false);
+    const Point<dim> centre = reference_centre<dim>(ref);
+    const double     a      = zone_half_width<dim>(records, centre, false);
     const double c = zone_half_width<dim>(records, centre, true);
     const double c_ref =
       load < 1 ? a * std::pow(1 - load, 1. / (dim == 2 ? 2 : 3)) : 0.;
@@ -1194,10 +1203,8 @@ namespace Signorini
       }
     if (ref.half_width > 0)
       {
-        Point<dim> centre;
-        for (unsigned int d = 0; d < dim && d < ref.contact_centre.size(); ++d)
-          centre[d] = ref.contact_centre[d];
-        const double a = zone_half_width(records, centre, false);
+        const double a =
+          zone_half_width<dim>(records, reference_centre<dim>(ref), false);
         line("contact half-width a",
              a,
              ref.half_width,
@@ -1379,7 +1386,17 @@ namespace Signorini
     run_frozen += points_frozen;
     run_released += points_released;
     const char *axis[] = {"x", "y", "z"};
-    const bool  header = statistics_header.empty();
+    // Contact pair summaries, their forces with round-off (relative to the
+    // force level) set to zero so that output does not depend on the ranks.
+    auto summary = contact->active() ?
+                     contact->summary() :
+                     std::vector<typename Contact::ContactProblem<
+                       dim>::PairSummary>();
+    for (auto &s : summary)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (std::abs(s.force[d]) < 1e-10 * force_scale)
+          s.force[d] = 0;
+    const bool header = statistics_header.empty();
     if (header)
       statistics_header = {"step",
                            "time",
@@ -1409,24 +1426,17 @@ namespace Signorini
           if (dirichlet_components[k][d])
             add("displacement" + name + axis[d], dirichlet_displacement[k][d]);
       }
-    if (contact->active())
+    for (unsigned int p = 0; p < summary.size(); ++p)
       {
-        const auto summary = contact->summary();
-        for (unsigned int p = 0; p < summary.size(); ++p)
-          {
-            const std::string name = "_" + std::to_string(p + 1) + "_";
-            for (unsigned int d = 0; d < dim; ++d)
-              add("contact_force" + name + axis[d],
-                  std::abs(summary[p].force[d]) < 1e-10 * force_scale ?
-                    0. :
-                    summary[p].force[d]);
-            add_text("contact_points" + name + "closed",
-                     std::to_string(summary[p].n_contact));
-            if (summary[p].rigid)
-              for (unsigned int d = 0; d < dim; ++d)
-                add("obstacle_displacement" + name + axis[d],
-                    summary[p].obstacle_displacement[d]);
-          }
+        const std::string name = "_" + std::to_string(p + 1) + "_";
+        for (unsigned int d = 0; d < dim; ++d)
+          add("contact_force" + name + axis[d], summary[p].force[d]);
+        add_text("contact_points" + name + "closed",
+                 std::to_string(summary[p].n_contact));
+        if (summary[p].rigid)
+          for (unsigned int d = 0; d < dim; ++d)
+            add("obstacle_displacement" + name + axis[d],
+                summary[p].obstacle_displacement[d]);
       }
     statistics_rows.push_back(row);
 
@@ -1461,7 +1471,6 @@ namespace Signorini
     report("stress max relative error", errors.stress_max_relative);
     if (contact->active())
       {
-        const auto summary = contact->summary();
         for (unsigned int p = 0; p < summary.size(); ++p)
           {
             const auto &s = summary[p];
@@ -1472,11 +1481,7 @@ namespace Signorini
                     << ")";
             pcout << ", force on slave = (";
             for (unsigned int d = 0; d < dim; ++d)
-              pcout << (d ? ", " : "")
-                    << format(std::abs(s.force[d]) < 1e-10 * force_scale ?
-                                0. :
-                                s.force[d],
-                              4);
+              pcout << (d ? ", " : "") << format(s.force[d], 4);
             pcout << "), max p = " << format(s.p_max, 4) << "\n";
           }
         for (const auto &line : contact_checks)

@@ -212,13 +212,6 @@ namespace Signorini
       bool friction_active;
 
       /**
-       * |h| = |T Lambda + rho_t v| of section 3.2 (stick iff <= 1), the
-       * distance of the point from the stick/slip kink; 0 if friction is
-       * not active.
-       */
-      double norm_h = 0.;
-
-      /**
        * Friction threshold lambda_f [Pa] actually used (section 3.3); 0 if
        * mu == 0.
        */
