@@ -1476,6 +1476,29 @@ namespace Signorini
 
 
     template <int dim>
+    struct ContactProblem<dim>::PointsState
+    {
+      std::vector<ContactPoint> points;
+    };
+
+
+    template <int dim>
+    std::shared_ptr<const typename ContactProblem<dim>::PointsState>
+    ContactProblem<dim>::save_points() const
+    {
+      return std::make_shared<const PointsState>(PointsState{points});
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::restore_points(const PointsState &saved)
+    {
+      points = saved.points;
+    }
+
+
+    template <int dim>
     std::vector<typename ContactProblem<dim>::PairSummary>
     ContactProblem<dim>::summary() const
     {

@@ -521,6 +521,27 @@ namespace Signorini
                       "the largest relative difference (slow: two residual "
                       "evaluations per coupled unknown; for development and "
                       "tests).");
+    prm.declare_entry("Stagnation tolerance",
+                      "1e-6",
+                      Patterns::Double(0, 1),
+                      "Round-off floor: once the statuses have settled (no "
+                      "change at two iterates in a row), a residual below "
+                      "this factor times the force norm that an iteration "
+                      "no longer halves is accepted as converged, with a log "
+                      "line. Large augmentation coefficients (rho_n = 1e6 "
+                      "E/h) put the floor above 'Relative tolerance'. 0: "
+                      "off.");
+    prm.declare_entry("Line search steps",
+                      "0",
+                      Patterns::Integer(0, 20),
+                      "Backtracking line search on the residual norm: when "
+                      "the full Newton update makes the residual grow, try "
+                      "1/2, 1/4, ... of it, at most this many times, and take "
+                      "the first that decreases the residual (if none does: "
+                      "the one with the smallest residual; the full update if "
+                      "no fraction beats it). Statuses follow each trial. "
+                      "0: full updates (one residual evaluation per "
+                      "iteration less).");
     prm.leave_subsection();
   }
 
@@ -533,6 +554,8 @@ namespace Signorini
     relative_tolerance = prm.get_double("Relative tolerance");
     absolute_tolerance = prm.get_double("Absolute tolerance");
     check_jacobian     = prm.get_bool("Check Jacobian");
+    line_search_steps  = prm.get_integer("Line search steps");
+    stagnation_tolerance = prm.get_double("Stagnation tolerance");
     prm.leave_subsection();
   }
 
@@ -700,7 +723,7 @@ namespace Signorini
                       "changes the convergence path, not the solution. With "
                       "'Penalty = true' it scales the penalty stiffness.");
     prm.declare_entry("Tangential coefficient",
-                      "0.1",
+                      "1",
                       Patterns::Double(1e-300),
                       "Dimensionless factor c_t of the friction augmentation "
                       "rho_t = c_t rho_n / (mu p_ref) [1/m], p_ref the RMS "

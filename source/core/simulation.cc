@@ -368,7 +368,7 @@ namespace Signorini
   // without constraints, F_int and F_ext for reactions and the force scale.
   template <int dim>
   void
-  Simulation<dim>::assemble(const bool with_matrix)
+  Simulation<dim>::assemble(const bool with_matrix, const bool trial)
   {
     timer.enter_subsection("bulk assembly");
     if (with_matrix)
@@ -487,7 +487,7 @@ namespace Signorini
                             with_matrix ? &system_matrix : nullptr,
                             newton_rhs,
                             contact_force,
-                            !with_matrix);
+                            !with_matrix && !trial);
       }
     if (with_matrix)
       system_matrix.compress(VectorOperation::add);
@@ -610,10 +610,8 @@ namespace Signorini
     const bool verbose = parameters.output.verbosity == Verbosity::verbose;
     const bool show_contact =
       contact->active() && parameters.output.verbosity != Verbosity::quiet;
-    const types::global_dof_index n_u = dof_handler.n_dofs();
-    const types::global_dof_index n_l =
-      contact->active() ? contact->n_lambda_dofs() : 0;
-    double residual_0 = 0;
+    double residual_0 = 0, residual_before = 0;
+    bool   settled_before = false;
     for (iterations = 0; iterations <= parameters.newton.max_iterations;
          ++iterations)
       {
@@ -628,12 +626,7 @@ namespace Signorini
             contact->start_newton_solve();
           }
         assemble(false);
-        double block[3] = {0, 0, 0};
-        for (const auto i : owned_system)
-          block[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)] +=
-            newton_rhs[i] * newton_rhs[i];
-        for (auto &b : block)
-          b = std::sqrt(Utilities::MPI::sum(b, mpi_communicator));
+        const auto   block = block_residuals();
         const double residual =
           std::sqrt(block[0] * block[0] + block[1] * block[1] +
                     block[2] * block[2]);
@@ -650,8 +643,27 @@ namespace Signorini
         };
         const bool statuses_settled =
           !contact->active() || contact_statistics.n_changed == 0;
+        // Round-off floor: with settled statuses the iteration is Newton
+        // on a smooth system and contracts fast; a residual that is below
+        // the stagnation tolerance and no longer halves (large
+        // augmentation coefficients: rho_n times the round-off of the
+        // positions) is as small as it gets.
+        const bool stagnated =
+          iterations >= 2 && statuses_settled && settled_before &&
+          residual > 0.5 * residual_before &&
+          residual <= parameters.newton.stagnation_tolerance * force_scale;
+        settled_before  = statuses_settled;
+        residual_before = residual;
         const bool residual_small =
-          small(block[0]) && small(block[1]) && small(block[2]);
+          (small(block[0]) && small(block[1]) && small(block[2])) ||
+          stagnated;
+        if (stagnated && !(small(block[0]) && small(block[1]) &&
+                           small(block[2])))
+          pcout << "    residual " << std::scientific << std::setprecision(2)
+                << residual / force_scale << std::defaultfloat
+                << " no longer decreases (round-off floor, below the "
+                   "stagnation tolerance): accepted"
+                << std::endl;
         // A frozen point (anti-cycling) that the plain law contradicts at
         // the converged iterate is released; Newton goes on from there.
         const bool release = residual_small && statuses_settled &&
@@ -733,11 +745,83 @@ namespace Signorini
         constraints_update.distribute(update);
         TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
         owned = state;
-        owned += update;
+        const double alpha = line_search(owned, update, residual);
+        owned.add(alpha, update);
         state = owned;
         update_solution();
       }
     return false;
+  }
+
+
+  template <int dim>
+  std::array<double, 3>
+  Simulation<dim>::block_residuals() const
+  {
+    const types::global_dof_index n_u = dof_handler.n_dofs();
+    const types::global_dof_index n_l =
+      contact->active() ? contact->n_lambda_dofs() : 0;
+    std::array<double, 3> block = {{0, 0, 0}};
+    for (const auto i : owned_system)
+      block[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)] +=
+        newton_rhs[i] * newton_rhs[i];
+    for (auto &b : block)
+      b = std::sqrt(Utilities::MPI::sum(b, mpi_communicator));
+    return block;
+  }
+
+
+  // Backtracking on the residual norm (Newton/Line search steps): the full
+  // update first; while the residual grows, halve it. Each trial is a
+  // residual evaluation with its own statuses, outside the status history;
+  // the caller adds the returned fraction of the update to @p base.
+  template <int dim>
+  double
+  Simulation<dim>::line_search(const TrilinosWrappers::MPI::Vector &base,
+                               const TrilinosWrappers::MPI::Vector &update,
+                               const double residual_now)
+  {
+    const unsigned int n_steps = parameters.newton.line_search_steps;
+    if (n_steps == 0)
+      return 1.;
+    TimerOutput::Scope t(timer, "line search");
+    const auto saved = contact->active() ? contact->save_points() : nullptr;
+    const auto saved_statistics = contact_statistics;
+    double     best = std::numeric_limits<double>::max(), best_alpha = 1,
+           alpha = 1, full = 0;
+    for (unsigned int k = 0; k <= n_steps; ++k, alpha *= 0.5)
+      {
+        TrilinosWrappers::MPI::Vector trial = base;
+        trial.add(alpha, update);
+        state = trial;
+        update_solution();
+        assemble(false, true);
+        const auto   b = block_residuals();
+        const double r = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        if (k == 0)
+          full = r;
+        if (r < best)
+          {
+            best       = r;
+            best_alpha = alpha;
+          }
+        if (r <= (1 - 1e-4 * alpha) * residual_now)
+          break;
+      }
+    if (saved)
+      contact->restore_points(*saved);
+    contact_statistics = saved_statistics;
+    if (best_alpha < 1)
+      {
+        ++line_searches;
+        if (parameters.output.verbosity != Verbosity::quiet)
+          pcout << "    line search: " << best_alpha
+                << " of the update (residual " << std::scientific
+                << std::setprecision(2) << full / residual_now << " -> "
+                << best / residual_now << " of the current)"
+                << std::defaultfloat << std::endl;
+      }
+    return best_alpha;
   }
 
 
@@ -1385,6 +1469,7 @@ namespace Signorini
     run_cycles += cycle_detections;
     run_frozen += points_frozen;
     run_released += points_released;
+    run_line_searches += line_searches;
     const char *axis[] = {"x", "y", "z"};
     // Contact pair summaries, their forces with round-off (relative to the
     // force level) set to zero so that output does not depend on the ranks.
@@ -1573,7 +1658,7 @@ namespace Signorini
         // Sub-steps: the whole step first, halved after each failure.
         unsigned int cuts = 0, total_iterations = 0;
         double       t_target = times[step - 1];
-        cycle_detections = points_frozen = points_released = 0;
+        cycle_detections = points_frozen = points_released = line_searches = 0;
         while (t_done < times[step - 1])
           {
             unsigned int iterations = 0;
@@ -1652,6 +1737,8 @@ namespace Signorini
           sout << ", status cycles detected " << run_cycles
                << ", points frozen " << run_frozen << ", released "
                << run_released;
+        if (parameters.newton.line_search_steps > 0)
+          sout << ", line searches " << run_line_searches;
         sout << std::endl;
       }
     if (parameters.newton.check_jacobian && contact->active())

@@ -211,6 +211,15 @@ namespace Signorini
       unsigned int
       release_frozen();
 
+      /** Opaque copy of the per-point state (statuses, values, anti-cycling
+       * history): trial evaluations (line search) restore it so that the
+       * status history sees accepted iterates only. */
+      struct PointsState;
+      std::shared_ptr<const PointsState>
+      save_points() const;
+      void
+      restore_points(const PointsState &saved);
+
       /** Per-pair results of the last evaluation, summed over ranks. */
       struct PairSummary
       {

@@ -157,6 +157,8 @@ namespace Signorini
     double       relative_tolerance;
     double       absolute_tolerance;
     bool         check_jacobian;
+    unsigned int line_search_steps; // 0: full Newton updates
+    double       stagnation_tolerance;
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

@@ -17,6 +17,7 @@
 #include <signorini/material/elastic_material.h>
 #include <signorini/solver/linear_solver.h>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -79,8 +80,14 @@ namespace Signorini
     setup_system();
     void
     make_constraints(const double time);
+    /** Residual (and with @p with_matrix the Jacobian) at the iterate.
+     * A residual-only evaluation is a new Newton iterate for the status
+     * history unless @p trial (line search). */
     void
-    assemble(const bool with_matrix);
+    assemble(const bool with_matrix, const bool trial = false);
+    /** Norms of the u, lambda and Lambda blocks of newton_rhs. */
+    std::array<double, 3>
+    block_residuals() const;
     void
     make_sparsity();
     bool
@@ -89,6 +96,10 @@ namespace Signorini
                     unsigned int & n_iterations);
     bool
     newton(unsigned int &n_iterations);
+    double
+    line_search(const TrilinosWrappers::MPI::Vector &base,
+                const TrilinosWrappers::MPI::Vector &update,
+                const double                         residual_now);
     void
     check_jacobian();
     void
@@ -189,6 +200,7 @@ namespace Signorini
     double         mindlin_q_last = 0, mindlin_q_turn = 0;
     int            mindlin_direction = 0;
     bool           mindlin_turned    = false;
+    unsigned int line_searches = 0, run_line_searches = 0;
     unsigned int run_cuts = 0, run_cycles = 0, run_frozen = 0,
                  run_released = 0;
     unsigned int             history_step = 0, history_geometric = 0;
