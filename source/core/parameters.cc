@@ -1031,6 +1031,23 @@ namespace Signorini
                       "0.05",
                       Patterns::Double(0),
                       "Relative tolerance of the point value checks.");
+    prm.declare_entry("Force balance tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Check the equilibrium of every body after each step: "
+                      "|F_load + F_support + F_contact| over the largest of "
+                      "the three must be below this value. F_load: Neumann "
+                      "and body forces; F_support: Dirichlet reactions; "
+                      "F_contact: the contact force the body receives. "
+                      "Bodies are the connected groups of material ids. 0: "
+                      "not checked.");
+    prm.declare_entry("Gap tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Check after each step that every closed contact point "
+                      "has |gap| below this value [m] and no open point "
+                      "penetrates by more; at least one point must be "
+                      "closed. 0: not checked.");
     prm.leave_subsection();
   }
 
@@ -1050,6 +1067,8 @@ namespace Signorini
     contact_pressure       = prm.get("Contact pressure");
     pressure_l2_tolerance  = prm.get_double("Pressure L2 tolerance");
     point_value_tolerance  = prm.get_double("Point value tolerance");
+    force_balance_tolerance = prm.get_double("Force balance tolerance");
+    gap_tolerance           = prm.get_double("Gap tolerance");
     friction_ratio         = prm.get_double("Friction force ratio");
     friction_ratio_normal  = to_doubles(prm.get("Friction ratio normal"));
     friction_ratio_tolerance = prm.get_double("Friction ratio tolerance");

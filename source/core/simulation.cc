@@ -25,7 +25,9 @@
 #include <unistd.h>
 #include <fstream>
 #include <iomanip>
+#include <functional>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace Signorini
@@ -274,6 +276,12 @@ namespace Signorini
     constraints_update.clear();
     constraints_update.reinit(relevant_system);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints_update);
+    // Hanging nodes alone (weights summing to one, also where a master
+    // carries a Dirichlet condition): support forces in compute_reactions.
+    constraints_hanging.clear();
+    constraints_hanging.reinit(locally_relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints_hanging);
+    constraints_hanging.close();
     dirichlet_dofs.assign(bc.dirichlet.size(), {});
 
     for (unsigned int k = 0; k < bc.dirichlet.size(); ++k)
@@ -521,6 +529,7 @@ namespace Signorini
   {
     history_time      = time;
     history_geometric = 0;
+    force_scale       = 0;
     make_constraints(time);
     for (auto &f : neumann_functions)
       f->set_time(time);
@@ -633,7 +642,12 @@ namespace Signorini
         if (iterations == 0)
           {
             residual_0  = residual;
-            force_scale = std::max({internal_force.l2_norm(),
+            // The force level of the load step so far: in a later
+            // geometric iteration of a stress-free step (open contact,
+            // rigid motion) the first residual is round-off and must not
+            // become the scale.
+            force_scale = std::max({force_scale,
+                                    internal_force.l2_norm(),
                                     external_force.l2_norm(),
                                     residual_0});
           }
@@ -953,6 +967,28 @@ namespace Signorini
   void
   Simulation<dim>::compute_reactions()
   {
+    // The residual R = F_int - F_ext + F_contact with the hanging-node
+    // constraints applied (a hanging DoF passes its share to its masters,
+    // some of which may carry a Dirichlet condition): at the Dirichlet DoFs
+    // it is the force of the supports.
+    {
+      TrilinosWrappers::MPI::Vector r;
+      r.reinit(locally_owned, locally_relevant, mpi_communicator, true);
+      for (const auto i : locally_owned)
+        {
+          const double raw =
+            internal_force[i] - external_force[i] + contact_force[i];
+          const auto *entries = constraints_hanging.get_constraint_entries(i);
+          if (entries && !entries->empty())
+            for (const auto &[j, w] : *entries)
+              r(j) += w * raw; // hanging: to the masters
+          else
+            r(i) += raw;
+        }
+      r.compress(VectorOperation::add);
+      support_force.reinit(locally_owned, mpi_communicator);
+      support_force = r;
+    }
     reactions.assign(dirichlet_dofs.size(), Tensor<1, dim>());
     dirichlet_displacement.assign(dirichlet_dofs.size(), Tensor<1, dim>());
     dirichlet_components.assign(dirichlet_dofs.size(), {});
@@ -961,8 +997,7 @@ namespace Signorini
         Tensor<1, dim> count;
         for (const auto &[dof, component] : dirichlet_dofs[k])
           {
-            reactions[k][component] +=
-              internal_force[dof] - external_force[dof] + contact_force[dof];
+            reactions[k][component] += support_force[dof];
             dirichlet_displacement[k][component] += solution[dof];
             count[component] += 1;
           }
@@ -1370,6 +1405,36 @@ namespace Signorini
               "): " + (pass ? "PASS" : "FAIL"));
           }
       }
+    if (ref.gap_tolerance > 0)
+      {
+        const auto all = contact->gather_points();
+        double     closed_gap = 0, penetration = 0;
+        unsigned int n_closed = 0;
+        for (const auto &r : all)
+          if (r.status != Contact::PointStatus::free)
+            {
+              ++n_closed;
+              closed_gap = std::max(closed_gap, std::abs(r.gap));
+            }
+          else if (r.paired)
+            penetration = std::max(penetration, r.gap);
+        // Before the gap has closed only penetration is checked; at the
+        // last step the gap must have closed.
+        const double t_final = parameters.load_stepping.step_times.back();
+        const bool   last = std::abs(time - t_final) <= 1e-12 * std::abs(t_final);
+        const bool pass = (n_closed > 0 || !last) &&
+                          std::max(closed_gap, penetration) <=
+                            ref.gap_tolerance;
+        contact_checks_pass &= pass;
+        contact_checks.push_back(
+          "gap: " + std::to_string(n_closed) +
+          " closed points, largest |g| there = " + format(closed_gap, 2) +
+          " m, largest penetration of an open point = " +
+          format(penetration, 2) + " m (tolerance " +
+          format(ref.gap_tolerance, 1) + "): " + (pass ? "PASS" : "FAIL"));
+      }
+    if (ref.force_balance_tolerance > 0)
+      check_force_balance();
     const char *axis[] = {"x", "y", "z"};
     for (const auto &pv : ref.point_values)
       {
@@ -1391,6 +1456,120 @@ namespace Signorini
                std::max(std::abs(pv.value), 1e-300),
              ref.point_value_tolerance,
              "relative error");
+      }
+  }
+
+
+  // Equilibrium of every body (Reference solution/Force balance tolerance):
+  // load (Neumann, body force) + support (Dirichlet reactions) + contact
+  // force received = 0. The internal forces of a body sum to zero, so the
+  // imbalance is what the converged iterate leaves of the residual; it also
+  // shows whether the two sides of a pair exchange equal and opposite
+  // forces. Bodies: material ids joined by shared DoFs.
+  template <int dim>
+  void
+  Simulation<dim>::check_force_balance()
+  {
+    // Union-find over material ids, joined where cells of two ids share a
+    // DoF (locally owned and ghost cells, then over all ranks).
+    std::map<types::material_id, types::material_id> parent;
+    const std::function<types::material_id(types::material_id)> root =
+      [&](types::material_id m) {
+        while (parent[m] != m)
+          m = parent[m];
+        return m;
+      };
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    std::map<types::global_dof_index, types::material_id> first;
+    std::vector<unsigned int> joins;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          const auto m = cell->material_id();
+          parent.emplace(m, m);
+          cell->get_dof_indices(dofs);
+          for (const auto i : dofs)
+            {
+              const auto it = first.emplace(i, m).first;
+              if (it->second != m)
+                {
+                  joins.push_back(it->second);
+                  joins.push_back(m);
+                }
+            }
+        }
+    for (const auto &part :
+         Utilities::MPI::all_gather(mpi_communicator, joins))
+      for (unsigned int k = 0; k + 1 < part.size(); k += 2)
+        {
+          parent.emplace(part[k], part[k]);
+          parent.emplace(part[k + 1], part[k + 1]);
+          const auto a = root(part[k]), b = root(part[k + 1]);
+          if (a != b)
+            parent[std::max(a, b)] = std::min(a, b);
+        }
+    // Material ids without a join on this rank, known everywhere.
+    std::vector<unsigned int> ids;
+    for (const auto &[m, p] : parent)
+      ids.push_back(m);
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, ids))
+      for (const auto m : part)
+        parent.emplace(m, m);
+
+    std::set<types::global_dof_index> supported;
+    for (const auto &condition : dirichlet_dofs)
+      for (const auto &[dof, component] : condition)
+        supported.insert(dof);
+    // Per body: load, support, contact (in that order).
+    std::map<types::material_id, std::array<Tensor<1, dim>, 3>> force;
+    for (const auto &[m, p] : parent)
+      force[root(m)];
+    std::vector<bool> done(locally_owned.n_elements(), false);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          auto &f = force[root(cell->material_id())];
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            {
+              const auto dof = dofs[i];
+              if (!locally_owned.is_element(dof) ||
+                  done[locally_owned.index_within_set(dof)])
+                continue;
+              done[locally_owned.index_within_set(dof)] = true;
+              const unsigned int c = fe.system_to_component_index(i).first;
+              f[0][c] += external_force[dof];
+              f[2][c] -= contact_force[dof];
+              if (supported.count(dof))
+                f[1][c] += support_force[dof];
+            }
+        }
+    for (auto &[m, f] : force)
+      {
+        for (auto &v : f)
+          v = Utilities::MPI::sum(v, mpi_communicator);
+        // An unloaded body (open contact, rigid motion) is measured
+        // against the force level of the step instead of its round-off.
+        const double scale =
+          std::max({f[0].norm(), f[1].norm(), f[2].norm()});
+        const double denominator = std::max(scale, 1e-6 * force_scale);
+        const double e =
+          denominator > 0 ? (f[0] + f[1] + f[2]).norm() / denominator : 0.;
+        const bool pass = e <= parameters.reference.force_balance_tolerance;
+        contact_checks_pass &= pass;
+        std::string ids;
+        for (const auto &[k, p] : parent)
+          if (root(k) == m)
+            ids += (ids.empty() ? "" : ", ") + std::to_string(k);
+        std::ostringstream text;
+        text << "force balance of the body of material " << ids
+             << ": |F_load + F_support + F_contact| = " << format(e, 2)
+             << " of max(|F_load|, |F_support|, |F_contact|) = "
+             << format(scale, 4) << " N (contact "
+             << format(f[2].norm(), 4) << " N; tolerance "
+             << format(parameters.reference.force_balance_tolerance, 1)
+             << "): " << (pass ? "PASS" : "FAIL");
+        contact_checks.push_back(text.str());
       }
   }
 

@@ -228,6 +228,8 @@ namespace Signorini
     };
     std::vector<PointValue> point_values;
     double                  point_value_tolerance;
+    double                  force_balance_tolerance; // 0: not checked
+    double                  gap_tolerance;           // 0: not checked
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

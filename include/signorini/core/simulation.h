@@ -113,6 +113,8 @@ namespace Signorini
       const std::vector<typename Contact::ContactProblem<dim>::PointRecord>
         &records);
     void
+    check_force_balance();
+    void
     compute_reactions();
     void
     compute_reference_errors(const double time);
@@ -144,6 +146,7 @@ namespace Signorini
 
     AffineConstraints<double> constraints_values; // hanging + Dirichlet(t)
     AffineConstraints<double> constraints_update; // hanging + zero Dirichlet
+    AffineConstraints<double> constraints_hanging; // hanging nodes only
     // Locally owned (DoF, component) pairs each Dirichlet condition constrains.
     std::vector<std::vector<std::pair<types::global_dof_index, unsigned int>>>
       dirichlet_dofs;
@@ -166,6 +169,9 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector last_increment; // owned
     double                        last_step_size = 0;
     TrilinosWrappers::MPI::Vector contact_force;    // on u DoFs [N]
+    // R = F_int - F_ext + F_contact after hanging-node condensation: the
+    // support forces at the Dirichlet DoFs (compute_reactions).
+    TrilinosWrappers::MPI::Vector support_force;
     Contact::ContactStatistics    contact_statistics;
     bool                          first_pairing = true;
     std::vector<std::string>      contact_checks; // printed after each step
