@@ -196,7 +196,31 @@ namespace Signorini
         point.psi[face.k_node[k]] = N[k];
       const auto geometry = face_geometry<dim>(face.X, xi);
       point.x_ref         = geometry.x;
-      point.weight        = w * geometry.jacobian;
+      // Axisymmetric: the contact ring of radius r = x carries 2 pi r. A
+      // point on a node (nodal rule) stands for the node's share of the
+      // face, so its radius is the N_k-weighted mean radius of the face:
+      // the lumped consistent weight, not zero on the axis.
+      double ring = 1;
+      if (parameters.axisymmetric)
+        {
+          ring = 2 * numbers::PI * geometry.x[0];
+          for (unsigned int k = 0; k < face.X.size(); ++k)
+            if (std::abs(N[k] - 1) < 1e-12)
+              {
+                const QGauss<dim - 1> gauss(3);
+                std::vector<double>   N_q;
+                double                num = 0, den = 0;
+                for (unsigned int q = 0; q < gauss.size(); ++q)
+                  {
+                    face_shape_values<dim>(face.X.size(), gauss.point(q), N_q);
+                    const auto g = face_geometry<dim>(face.X, gauss.point(q));
+                    num += gauss.weight(q) * g.jacobian * N_q[k] * g.x[0];
+                    den += gauss.weight(q) * g.jacobian * N_q[k];
+                  }
+                ring = 2 * numbers::PI * num / den;
+              }
+        }
+      point.weight = w * geometry.jacobian * ring;
       point.slave_normal  = geometry.normal * face.outward_normal > 0 ?
                               geometry.normal :
                               -geometry.normal;

@@ -1105,6 +1105,16 @@ namespace Signorini
                       "2",
                       Patterns::Integer(2, 3),
                       "Space dimension: 2 (plane strain) or 3.");
+    prm.declare_entry("Axisymmetric",
+                      "false",
+                      Patterns::Bool(),
+                      "Dimension = 2 only: the mesh is a meridian section, x "
+                      "the radius r >= 0 and y the axis z. Volume and "
+                      "surface integrals carry 2 pi r and the hoop strain "
+                      "u_r / r is included, so forces and reactions are "
+                      "totals over the full circumference [N]. Put a "
+                      "Dirichlet condition on x (= u_r = 0) on the faces on "
+                      "the axis r = 0.");
     prm.enter_subsection("Finite element");
     prm.declare_entry("Degree",
                       "1",
@@ -1137,7 +1147,8 @@ namespace Signorini
   void
   Parameters::parse_parameters(ParameterHandler &prm, const Counts &counts)
   {
-    dimension = prm.get_integer("Dimension");
+    dimension    = prm.get_integer("Dimension");
+    axisymmetric = prm.get_bool("Axisymmetric");
     prm.enter_subsection("Finite element");
     fe_degree = prm.get_integer("Degree");
     prm.leave_subsection();
@@ -1240,6 +1251,16 @@ namespace Signorini
                        "and average normals are defined at nodes and need "
                        "'Integration rule = nodal'. Set 'Normal = master' or "
                        "'Integration rule = nodal'.");
+    if (axisymmetric && dimension != 2)
+      throw InputError("parameter 'Axisymmetric': an axisymmetric model is a "
+                       "2D meridian section; set 'Dimension = 2' or "
+                       "'Axisymmetric = false'.");
+    if (!c.pairs.empty() && fe_degree > 2)
+      throw InputError("subsection 'Finite element', parameter 'Degree': "
+                       "contact supports Q1 and Q2 slave and master faces; "
+                       "set 'Degree = 1' or '2' when 'Contact/Number of "
+                       "contact pairs' > 0 (Q3 is available without "
+                       "contact).");
     if (!c.pairs.empty() && linear_solver.type != LinearSolverType::direct)
       throw InputError("subsection 'Linear solver', parameter 'Type': contact "
                        "systems (u | lambda | Lambda) are saddle-point "

@@ -145,6 +145,29 @@ namespace Signorini
   {
     TimerOutput::Scope t(timer, "mesh");
     Geometry::create_mesh(parameters, triangulation);
+    // Size of the model for relative tolerances: the diagonal of the
+    // bounding box of all cells (linear in the cells; GridTools::diameter
+    // compares all vertex pairs and took a quarter of the run at 50k DoFs).
+    Point<dim> lo, hi;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] = std::numeric_limits<double>::max();
+        hi[d] = -std::numeric_limits<double>::max();
+      }
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lo[d] = std::min(lo[d], cell->vertex(v)[d]);
+              hi[d] = std::max(hi[d], cell->vertex(v)[d]);
+            }
+    double size2 = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      size2 += std::pow(Utilities::MPI::max(hi[d], mpi_communicator) +
+                          Utilities::MPI::max(-lo[d], mpi_communicator),
+                        2);
+    model_size = std::sqrt(size2);
     check_input_against_mesh();
   }
 
@@ -155,6 +178,21 @@ namespace Signorini
   void
   Simulation<dim>::check_input_against_mesh() const
   {
+    if (parameters.axisymmetric)
+      {
+        double x_min = 0;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              x_min = std::min(x_min, cell->vertex(v)[0]);
+        x_min = Utilities::MPI::min(x_min, mpi_communicator);
+        if (x_min < -1e-10 * model_size)
+          throw InputError("parameter 'Axisymmetric': the mesh reaches x = " +
+                           format(x_min, 4) +
+                           " but x is the radius and must be >= 0. Move the "
+                           "mesh (Geometry/Body k/Shift) or use a half "
+                           "section (e.g. 'Segment = quarter').");
+      }
     const auto  ids = Geometry::boundary_ids(triangulation);
     std::string available;
     for (const auto id : ids)
@@ -294,7 +332,7 @@ namespace Signorini
         if (at_point)
           point = to_point<dim>(d.at_point, "Dirichlet/At point");
         const double tolerance =
-          1e-8 * GridTools::diameter(triangulation);
+          1e-8 * model_size;
         unsigned int found = 0;
         // Nodes of this boundary (vertices only for 'At point'); every
         // support point gets the value of its component's expression.
@@ -404,7 +442,9 @@ namespace Signorini
     std::vector<types::global_dof_index> dofs(n);
     std::vector<SymmetricTensor<2, dim>> strains(quadrature.size());
     std::vector<SymmetricTensor<2, dim>> sym_grad(n);
+    std::vector<Tensor<1, dim>>          u_values(quadrature.size());
     Vector<double>                       force_values(dim);
+    const bool axisymmetric = parameters.axisymmetric;
 
     const auto &bc = parameters.boundary_conditions;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -418,15 +458,61 @@ namespace Signorini
           const auto &C        = material.stiffness();
           fe_values[displacement].get_function_symmetric_gradients(solution,
                                                                    strains);
+          if (axisymmetric)
+            fe_values[displacement].get_function_values(solution, u_values);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const double JxW = fe_values.JxW(q);
+              const Point<dim> &x = fe_values.quadrature_point(q);
+              // Axisymmetric: the ring of radius r = x carries 2 pi r.
+              const double JxW =
+                fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
               for (unsigned int i = 0; i < n; ++i)
                 sym_grad[i] =
                   fe_values[displacement].symmetric_gradient(i, q);
+              body_force->vector_value(x, force_values);
+              if (axisymmetric)
+                {
+                  // Strains (rr, zz, rz) of the section plus the hoop
+                  // strain u_r / r: sigma = lambda tr(eps) I + 2 mu eps with
+                  // the trace over all three.
+                  const double lambda = material.lambda, mu = material.mu;
+                  const double hoop   = u_values[q][0] / x[0];
+                  const SymmetricTensor<2, dim> stress =
+                    material.stress(strains[q], hoop);
+                  const double stress_hoop =
+                    material.stress_33(strains[q], hoop);
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      const unsigned int comp =
+                        fe.system_to_component_index(i).first;
+                      const double hoop_i =
+                        comp == 0 ? fe_values.shape_value(i, q) / x[0] : 0.;
+                      cell_fint(i) +=
+                        (stress * sym_grad[i] + stress_hoop * hoop_i) * JxW;
+                      cell_fext(i) += force_values(comp) *
+                                      fe_values.shape_value(i, q) * JxW;
+                      if (with_matrix)
+                        {
+                          const double tr_i = trace(sym_grad[i]) + hoop_i;
+                          for (unsigned int j = 0; j < n; ++j)
+                            {
+                              const double hoop_j =
+                                fe.system_to_component_index(j).first == 0 ?
+                                  fe_values.shape_value(j, q) / x[0] :
+                                  0.;
+                              cell_matrix(i, j) +=
+                                (lambda * tr_i *
+                                   (trace(sym_grad[j]) + hoop_j) +
+                                 2 * mu *
+                                   (sym_grad[i] * sym_grad[j] +
+                                    hoop_i * hoop_j)) *
+                                JxW;
+                            }
+                        }
+                    }
+                  continue;
+                }
               const SymmetricTensor<2, dim> stress = C * strains[q];
-              body_force->vector_value(fe_values.quadrature_point(q),
-                                       force_values);
               for (unsigned int i = 0; i < n; ++i)
                 {
                   const unsigned int comp =
@@ -462,11 +548,13 @@ namespace Signorini
                         else
                           traction =
                             -g.value(x, 0) * fe_face_values.normal_vector(q);
+                        const double ring =
+                          axisymmetric ? 2 * numbers::PI * x[0] : 1.;
                         for (unsigned int i = 0; i < n; ++i)
                           cell_fext(i) +=
                             traction[fe.system_to_component_index(i).first] *
                             fe_face_values.shape_value(i, q) *
-                            fe_face_values.JxW(q);
+                            fe_face_values.JxW(q) * ring;
                       }
                   }
 
@@ -878,7 +966,7 @@ namespace Signorini
     double E_max = 0;
     for (const auto &[id, material] : materials)
       E_max = std::max(E_max, material.youngs_modulus());
-    const double floor[3] = {1e-6 * GridTools::diameter(triangulation),
+    const double floor[3] = {1e-6 * model_size,
                              1e-6 * E_max,
                              1.};
     for (unsigned int b = 0; b < 3; ++b)
@@ -1076,7 +1164,9 @@ namespace Signorini
                   }
               if (s_exact)
                 {
-                  const SymmetricTensor<2, dim> s = material.stress(eps_h[q]);
+                  // Axisymmetric: the hoop strain u_r / r enters the trace.
+                  const SymmetricTensor<2, dim> s = material.stress(
+                    eps_h[q], parameters.axisymmetric ? u_h[q][0] / x[0] : 0.);
                   double                        e2 = 0, n2 = 0;
                   for (unsigned int i = 0; i < dim; ++i)
                     for (unsigned int j = 0; j < dim; ++j)
@@ -1591,7 +1681,8 @@ namespace Signorini
                              std::vector<std::string>(dim, "displacement"),
                              DataOut<dim>::type_dof_data,
                              interpretation);
-    Postprocess::StressPostprocessor<dim> stress(materials);
+    Postprocess::StressPostprocessor<dim> stress(materials,
+                                                 parameters.axisymmetric);
     data_out.add_data_vector(solution, stress);
     Vector<float> material_id(triangulation.n_active_cells());
     Vector<float> subdomain(triangulation.n_active_cells());

@@ -308,6 +308,7 @@ namespace Signorini
   struct Parameters
   {
     unsigned int                dimension;
+    bool                        axisymmetric; // 2D: x = r, y = z
     unsigned int                fe_degree;
     GeometryParameters          geometry;
     std::vector<MaterialParameters> materials;

@@ -180,6 +180,7 @@ namespace Signorini
     double                        jacobian_error_max  = 0; // Check Jacobian
 
     double                           force_scale = 0;
+    double model_size = 0; // bounding-box diagonal of the mesh [m]
     std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
     // Mean displacement of the DoFs each Dirichlet condition constrains,
     // per component, and which components it constrains (statistics.csv:

@@ -44,21 +44,36 @@ namespace Signorini
         return E;
       }
 
+      /** In-plane (or 3D) stress. In 2D, @p strain_33 is the strain normal
+       * to the plane: 0 in plane strain, the hoop strain u_r / r in an
+       * axisymmetric model; it enters through the trace. */
       SymmetricTensor<2, dim>
-      stress(const SymmetricTensor<2, dim> &strain) const
+      stress(const SymmetricTensor<2, dim> &strain,
+             const double                   strain_33 = 0) const
       {
-        return lambda * trace(strain) * unit_symmetric_tensor<dim>() +
+        return lambda * (trace(strain) + strain_33) *
+                 unit_symmetric_tensor<dim>() +
                2 * mu * strain;
       }
 
-      /** von Mises stress including sigma_zz of plane strain in 2D. */
+      /** 2D: the stress normal to the plane (sigma_zz of plane strain, the
+       * hoop stress of an axisymmetric model). */
       double
-      von_mises(const SymmetricTensor<2, dim> &strain) const
+      stress_33(const SymmetricTensor<2, dim> &strain,
+                const double                   strain_33 = 0) const
       {
-        const SymmetricTensor<2, dim> s = stress(strain);
-        double szz = (dim == 2 ? lambda * trace(strain) : 0.);
+        return lambda * (trace(strain) + strain_33) + 2 * mu * strain_33;
+      }
+
+      /** von Mises stress, in 2D including the stress normal to the plane. */
+      double
+      von_mises(const SymmetricTensor<2, dim> &strain,
+                const double                   strain_33 = 0) const
+      {
+        const SymmetricTensor<2, dim> s = stress(strain, strain_33);
         double sxx = s[0][0], syy = s[1][1];
-        double sz  = dim == 3 ? s[dim - 1][dim - 1] : szz;
+        double sz  = dim == 3 ? s[dim - 1][dim - 1] :
+                                stress_33(strain, strain_33);
         double shear2 = s[0][1] * s[0][1];
         if constexpr (dim == 3)
           shear2 += s[0][2] * s[0][2] + s[1][2] * s[1][2];

@@ -22,10 +22,13 @@ namespace Signorini
     class StressPostprocessor : public DataPostprocessor<dim>
     {
     public:
-      explicit StressPostprocessor(
+      /** @p axisymmetric: 2D meridian section, x = r (hoop strain u_r/r). */
+      StressPostprocessor(
         const std::map<types::material_id, Material::ElasticMaterial<dim>>
-          &materials)
+          &        materials,
+        const bool axisymmetric = false)
         : materials(materials)
+        , axisymmetric(axisymmetric)
       {}
 
       std::vector<std::string>
@@ -37,7 +40,7 @@ namespace Signorini
           for (unsigned int j = i; j < dim; ++j)
             names.push_back(std::string("stress_") + axis[i] + axis[j]);
         if (dim == 2)
-          names.push_back("stress_zz");
+          names.push_back(axisymmetric ? "stress_hoop" : "stress_zz");
         names.push_back("von_mises");
         return names;
       }
@@ -53,7 +56,9 @@ namespace Signorini
       UpdateFlags
       get_needed_update_flags() const override
       {
-        return update_gradients;
+        return axisymmetric ?
+                 update_gradients | update_values | update_quadrature_points :
+                 update_gradients;
       }
 
       void
@@ -70,20 +75,29 @@ namespace Signorini
               for (unsigned int j = i; j < dim; ++j)
                 strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
                                       inputs.solution_gradients[q][j][i]);
-            const SymmetricTensor<2, dim> stress = material.stress(strain);
+            // Hoop strain u_r / r; on the axis its limit du_r/dr.
+            const double r    = inputs.evaluation_points.empty() ?
+                                  0. :
+                                  inputs.evaluation_points[q][0];
+            const double hoop = !axisymmetric ? 0. :
+                                r > 0 ? inputs.solution_values[q][0] / r :
+                                        inputs.solution_gradients[q][0][0];
+            const SymmetricTensor<2, dim> stress =
+              material.stress(strain, hoop);
             unsigned int                  k      = 0;
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = i; j < dim; ++j)
                 computed[q][k++] = stress[i][j];
             if (dim == 2)
-              computed[q][k++] = material.lambda * trace(strain);
-            computed[q][k] = material.von_mises(strain);
+              computed[q][k++] = material.stress_33(strain, hoop);
+            computed[q][k] = material.von_mises(strain, hoop);
           }
       }
 
     private:
       const std::map<types::material_id, Material::ElasticMaterial<dim>>
-        &materials;
+        &        materials;
+      const bool axisymmetric;
     };
   } // namespace Postprocess
 } // namespace Signorini
