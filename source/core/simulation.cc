@@ -1813,6 +1813,8 @@ namespace Signorini
     last_checks.clear();
     const auto check_line = [&](const std::string &text) {
       last_checks.push_back(text);
+      if (text.size() >= 4 && text.compare(text.size() - 4, 4, "FAIL") == 0)
+        ++n_failed_checks;
       pcout << "  reference check: " << text << "\n";
     };
     const auto report = [&](const char *what, const double e) {
@@ -2018,6 +2020,12 @@ namespace Signorini
             << " (tolerance 1.0e-06): "
             << (jacobian_error_max < 1e-6 ? "PASS" : "FAIL")
             << std::defaultfloat << std::endl;
+    if (parameters.newton.check_jacobian && contact->active() &&
+        !(jacobian_error_max < 1e-6))
+      ++n_failed_checks;
+    if (n_failed_checks > 0)
+      sout << "Reference checks: " << n_failed_checks
+           << " FAIL(s) over the run; exit code 4" << std::endl;
     if (parameters.output.timing_summary)
       {
         timer.print_wall_time_statistics(mpi_communicator);
@@ -2036,7 +2044,7 @@ namespace Signorini
   }
 
 
-  void
+  unsigned int
   run_from_file(const std::string &filename, const MPI_Comm mpi_communicator)
   {
     ParameterHandler prm;
@@ -2044,10 +2052,12 @@ namespace Signorini
     // Errors leave the Simulation's scope only after it is destroyed, so
     // its TimerOutput does not complain about an exception in flight.
     std::exception_ptr failure;
+    unsigned int       failed_checks = 0;
     const auto         run = [&](auto &&simulation) {
       try
         {
           simulation.run();
+          failed_checks = simulation.failed_checks();
         }
       catch (...)
         {
@@ -2060,6 +2070,7 @@ namespace Signorini
       run(Simulation<3>(parameters, prm, mpi_communicator));
     if (failure)
       std::rethrow_exception(failure);
+    return failed_checks;
   }
 
   template class Simulation<2>;

@@ -65,6 +65,13 @@ namespace Signorini
       return errors;
     }
 
+    /** Reference checks printed as FAIL over the run (0: all passed). */
+    unsigned int
+    failed_checks() const
+    {
+      return n_failed_checks;
+    }
+
     types::global_dof_index
     n_dofs() const
     {
@@ -208,14 +215,16 @@ namespace Signorini
     int            mindlin_direction = 0;
     bool           mindlin_turned    = false;
     unsigned int line_searches = 0, run_line_searches = 0;
+    unsigned int n_failed_checks = 0;
     unsigned int run_cuts = 0, run_cycles = 0, run_frozen = 0,
                  run_released = 0;
     unsigned int             history_step = 0, history_geometric = 0;
     double                   history_time = 0;
   };
 
-  /** Reads @p filename, dispatches on Dimension and runs; used by main(). */
-  void
+  /** Reads @p filename, dispatches on Dimension and runs; used by main().
+   * Returns the number of reference checks that failed. */
+  unsigned int
   run_from_file(const std::string &filename, const MPI_Comm mpi_communicator);
 } // namespace Signorini
 
