@@ -443,6 +443,7 @@ namespace Signorini
     std::vector<SymmetricTensor<2, dim>> strains(quadrature.size());
     std::vector<SymmetricTensor<2, dim>> sym_grad(n);
     std::vector<Tensor<1, dim>>          u_values(quadrature.size());
+    std::vector<double>                  hoop_i(n), trace_i(n);
     Vector<double>                       force_values(dim);
     const bool axisymmetric = parameters.axisymmetric;
 
@@ -455,7 +456,6 @@ namespace Signorini
           cell_fint   = 0;
           cell_fext   = 0;
           const auto &material = materials.at(cell->material_id());
-          const auto &C        = material.stiffness();
           fe_values[displacement].get_function_symmetric_gradients(solution,
                                                                    strains);
           if (axisymmetric)
@@ -470,63 +470,36 @@ namespace Signorini
                 sym_grad[i] =
                   fe_values[displacement].symmetric_gradient(i, q);
               body_force->vector_value(x, force_values);
-              if (axisymmetric)
-                {
-                  // Strains (rr, zz, rz) of the section plus the hoop
-                  // strain u_r / r: sigma = lambda tr(eps) I + 2 mu eps with
-                  // the trace over all three.
-                  const double lambda = material.lambda, mu = material.mu;
-                  const double hoop   = u_values[q][0] / x[0];
-                  const SymmetricTensor<2, dim> stress =
-                    material.stress(strains[q], hoop);
-                  const double stress_hoop =
-                    material.stress_33(strains[q], hoop);
-                  for (unsigned int i = 0; i < n; ++i)
-                    {
-                      const unsigned int comp =
-                        fe.system_to_component_index(i).first;
-                      const double hoop_i =
-                        comp == 0 ? fe_values.shape_value(i, q) / x[0] : 0.;
-                      cell_fint(i) +=
-                        (stress * sym_grad[i] + stress_hoop * hoop_i) * JxW;
-                      cell_fext(i) += force_values(comp) *
-                                      fe_values.shape_value(i, q) * JxW;
-                      if (with_matrix)
-                        {
-                          const double tr_i = trace(sym_grad[i]) + hoop_i;
-                          for (unsigned int j = 0; j < n; ++j)
-                            {
-                              const double hoop_j =
-                                fe.system_to_component_index(j).first == 0 ?
-                                  fe_values.shape_value(j, q) / x[0] :
-                                  0.;
-                              cell_matrix(i, j) +=
-                                (lambda * tr_i *
-                                   (trace(sym_grad[j]) + hoop_j) +
-                                 2 * mu *
-                                   (sym_grad[i] * sym_grad[j] +
-                                    hoop_i * hoop_j)) *
-                                JxW;
-                            }
-                        }
-                    }
-                  continue;
-                }
-              const SymmetricTensor<2, dim> stress = C * strains[q];
+              // Isotropic: sigma = lambda tr(eps) I + 2 mu eps. In an
+              // axisymmetric model eps has a fourth component, the hoop
+              // strain u_r / r, which enters the trace and the work; it is
+              // zero in plane strain and 3D.
+              const double lambda = material.lambda, mu = material.mu;
+              const double hoop = axisymmetric ? u_values[q][0] / x[0] : 0.;
+              const SymmetricTensor<2, dim> stress =
+                material.stress(strains[q], hoop);
+              const double stress_hoop = material.stress_33(strains[q], hoop);
               for (unsigned int i = 0; i < n; ++i)
                 {
                   const unsigned int comp =
                     fe.system_to_component_index(i).first;
-                  cell_fint(i) += (stress * sym_grad[i]) * JxW;
-                  cell_fext(i) += force_values(comp) *
-                                  fe_values.shape_value(i, q) * JxW;
-                  if (with_matrix)
-                    {
-                      const SymmetricTensor<2, dim> Ci = C * sym_grad[i];
-                      for (unsigned int j = 0; j < n; ++j)
-                        cell_matrix(i, j) += (Ci * sym_grad[j]) * JxW;
-                    }
+                  hoop_i[i] = axisymmetric && comp == 0 ?
+                                fe_values.shape_value(i, q) / x[0] :
+                                0.;
+                  trace_i[i] = trace(sym_grad[i]) + hoop_i[i];
+                  cell_fint(i) +=
+                    (stress * sym_grad[i] + stress_hoop * hoop_i[i]) * JxW;
+                  cell_fext(i) +=
+                    force_values(comp) * fe_values.shape_value(i, q) * JxW;
                 }
+              if (with_matrix)
+                for (unsigned int i = 0; i < n; ++i)
+                  for (unsigned int j = 0; j < n; ++j)
+                    cell_matrix(i, j) +=
+                      (lambda * trace_i[i] * trace_i[j] +
+                       2 * mu *
+                         (sym_grad[i] * sym_grad[j] + hoop_i[i] * hoop_i[j])) *
+                      JxW;
             }
 
           for (const unsigned int f : cell->face_indices())
@@ -1393,7 +1366,7 @@ namespace Signorini
     };
     const bool needs_points = ref.max_pressure > 0 || ref.half_width > 0 ||
                               !ref.contact_pressure.empty() ||
-                              ref.cattaneo_mindlin;
+                              ref.cattaneo_mindlin || ref.gap_tolerance > 0;
     const auto records =
       needs_points ? contact->gather_points() :
                      std::vector<typename Contact::ContactProblem<
@@ -1497,10 +1470,9 @@ namespace Signorini
       }
     if (ref.gap_tolerance > 0)
       {
-        const auto all = contact->gather_points();
-        double     closed_gap = 0, penetration = 0;
+        double       closed_gap = 0, penetration = 0;
         unsigned int n_closed = 0;
-        for (const auto &r : all)
+        for (const auto &r : records)
           if (r.status != Contact::PointStatus::free)
             {
               ++n_closed;

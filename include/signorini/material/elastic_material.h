@@ -9,8 +9,9 @@
 
 /**
  * Isotropic small-strain linear elasticity, sigma = lambda tr(eps) I + 2 mu
- * eps [Pa]. In 2D the model is plane strain: eps_zz = 0 and the out-of-plane
- * stress sigma_zz = lambda tr(eps) enters the von Mises stress.
+ * eps [Pa]. In 2D the strain normal to the plane is 0 (plane strain) or the
+ * hoop strain u_r / r (axisymmetric); it enters the trace, and the stress
+ * normal to the plane enters the von Mises stress.
  */
 namespace Signorini
 {
@@ -28,15 +29,7 @@ namespace Signorini
         , nu(poissons_ratio)
         , lambda(E * nu / ((1 + nu) * (1 - 2 * nu)))
         , mu(E / (2 * (1 + nu)))
-      {
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = 0; j < dim; ++j)
-            for (unsigned int k = 0; k < dim; ++k)
-              for (unsigned int l = 0; l < dim; ++l)
-                C[i][j][k][l] = (i == j && k == l ? lambda : 0.) +
-                                ((i == k && j == l) ? mu : 0.) +
-                                ((i == l && j == k) ? mu : 0.);
-      }
+      {}
 
       double
       youngs_modulus() const
@@ -83,16 +76,7 @@ namespace Signorini
                          3 * shear2);
       }
 
-      const SymmetricTensor<4, dim> &
-      stiffness() const
-      {
-        return C;
-      }
-
       double E = 0, nu = 0, lambda = 0, mu = 0;
-
-    private:
-      SymmetricTensor<4, dim> C;
     };
 
     /** Materials by material id, built from the Materials subsection. */
