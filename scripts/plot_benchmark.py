@@ -35,7 +35,7 @@ def main(csv_path, png_path):
                     continue
                 x = [float(r["wall_s"]) for r in pts]
                 y = [max(float(r[key]), 1e-16) for r in pts]
-                style = "-" if strategy == "local" else "--"
+                style = {"local": "-", "uniform": "--"}.get(strategy, ":")
                 ax.loglog(x, y, style, marker="o",
                           label=f"{rule}, {strategy} refinement")
                 for r, xx, yy in zip(pts, x, y):

@@ -289,6 +289,7 @@ namespace Signorini
         e_max(n_pairs, 0.);
       slave_faces.clear();
       master_faces.clear();
+      own_master_cells.clear();
 
       // Master faces this rank owns, packed for the all-gather.
       std::vector<double>                  master_reals;
@@ -383,6 +384,7 @@ namespace Signorini
                          m != master_of.end() && cell->is_locally_owned())
                   {
                     master_ints.push_back(m->second);
+                    own_master_cells.push_back(cell);
                     // Nodes in the face's FE_Q<dim-1> order (see
                     // project_onto_face), dim DoFs each.
                     std::vector<types::global_dof_index> node_dofs(
@@ -580,6 +582,8 @@ namespace Signorini
       const auto all_ints  = Utilities::MPI::all_gather(comm, master_ints);
       for (unsigned int r = 0; r < all_ints.size(); ++r)
         {
+          if (r == Utilities::MPI::this_mpi_process(comm))
+            own_master_offset = master_faces.size();
           unsigned int ir = 0;
           for (unsigned int ii = 0; ii < all_ints[r].size();)
             {
@@ -1723,6 +1727,101 @@ namespace Signorini
           result.emplace_back(names[v], ghosted);
         }
       return result;
+    }
+
+    template <int dim>
+    void
+    ContactProblem<dim>::multipliers_to_field(
+      const TrilinosWrappers::MPI::Vector &state,
+      TrilinosWrappers::MPI::Vector &      field) const
+    {
+      // A node may lie on slave faces of several ranks and on none of its
+      // owner's: every rank writes the nodes of its faces (the same
+      // values), averaged through a count.
+      IndexSet touched(dof_handler.n_dofs());
+      for (const auto &face : slave_faces)
+        for (const auto d : face.node_dofs)
+          touched.add_index(d);
+      touched.compress();
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      auto            num   = writable_vector(owned, touched, comm);
+      auto            den   = writable_vector(owned, touched, comm);
+      for (const auto &face : slave_faces)
+        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+          {
+            const auto &info = nodes.at(face.node_dofs[l * dim]);
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                double value = 0;
+                if (c == 0)
+                  value = state[info.lambda];
+                else if (info.friction != numbers::invalid_dof_index)
+                  value = state[info.friction + c - 1];
+                add_entry(num, face.node_dofs[l * dim + c], value);
+                add_entry(den, face.node_dofs[l * dim + c], 1.);
+              }
+          }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned)
+        field[i] = den[i] != 0 ? num[i] / den[i] : 0.;
+      field.compress(VectorOperation::insert);
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::multipliers_from_field(
+      const TrilinosWrappers::MPI::Vector &field,
+      TrilinosWrappers::MPI::Vector &      state_owned) const
+    {
+      auto num = writable_vector(owned_multipliers, extra, comm);
+      auto den = writable_vector(owned_multipliers, extra, comm);
+      for (const auto &face : slave_faces)
+        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+          {
+            const auto &info = nodes.at(face.node_dofs[l * dim]);
+            add_entry(num, info.lambda, field[face.node_dofs[l * dim]]);
+            add_entry(den, info.lambda, 1.);
+            if (info.friction != numbers::invalid_dof_index)
+              for (unsigned int c = 1; c < dim; ++c)
+                {
+                  add_entry(num,
+                            info.friction + c - 1,
+                            field[face.node_dofs[l * dim + c]]);
+                  add_entry(den, info.friction + c - 1, 1.);
+                }
+          }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned_multipliers)
+        state_owned[i] = den[i] != 0 ? num[i] / den[i] : 0.;
+      state_owned.compress(VectorOperation::insert);
+    }
+
+
+    template <int dim>
+    std::vector<typename DoFHandler<dim>::active_cell_iterator>
+    ContactProblem<dim>::contact_zone_cells() const
+    {
+      std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+      std::vector<unsigned int> master_active(master_faces.size(), 0);
+      std::vector<bool>         slave_active(slave_faces.size(), false);
+      for (const auto &point : points)
+        if (point.status != PointStatus::free)
+          {
+            slave_active[point.face] = true;
+            if (point.master_face >= 0)
+              master_active[point.master_face] = 1;
+          }
+      for (unsigned int f = 0; f < slave_faces.size(); ++f)
+        if (slave_active[f])
+          cells.push_back(slave_faces[f].cell);
+      Utilities::MPI::max(master_active, comm, master_active);
+      for (unsigned int k = 0; k < own_master_cells.size(); ++k)
+        if (master_active[own_master_offset + k] != 0)
+          cells.push_back(own_master_cells[k]);
+      return cells;
     }
 
     template class ContactProblem<2>;

@@ -570,7 +570,11 @@ namespace Signorini
                       Patterns::Selection("direct|CG|GMRES"),
                       "direct: sparse LU (MUMPS by default); CG or GMRES: "
                       "Krylov method preconditioned by Trilinos ML AMG with "
-                      "rigid-body modes.");
+                      "rigid-body modes. With contact: GMRES only, with a "
+                      "block lower-triangular preconditioner (AMG on the "
+                      "displacement block, the Schur complement D - C "
+                      "diag(A)^-1 B^T of the multipliers factorised by the "
+                      "'Direct solver').");
     prm.declare_entry("Direct solver",
                       "MUMPS",
                       Patterns::Selection("MUMPS|KLU"),
@@ -1097,6 +1101,81 @@ namespace Signorini
   }
 
 
+  // ------------------------------------------------- Adaptive refinement
+  void
+  AdaptivityParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Adaptive refinement");
+    prm.declare_entry("Cycles",
+                      "0",
+                      Patterns::Integer(0, 20),
+                      "Refine-and-resolve cycles after an adapted load step "
+                      "(0: no adaptivity). Each cycle marks cells by the "
+                      "Kelly indicator of the displacement and by the "
+                      "active contact zone, refines, transfers the converged "
+                      "state and the state at the start of the step "
+                      "(displacements and multipliers) to the new mesh and "
+                      "solves the step again.");
+    prm.declare_entry("Steps",
+                      "last",
+                      Patterns::Selection("last|every"),
+                      "Which load steps are adapted: the last one only "
+                      "(a mesh for the final state, e.g. Hertz) or every "
+                      "one (the mesh follows a moving contact zone; cells "
+                      "are also coarsened if 'Coarsening fraction' > 0).");
+    prm.declare_entry("Refinement fraction",
+                      "0.1",
+                      Patterns::Double(0, 1),
+                      "Fraction of the active cells, by count, with the "
+                      "largest Kelly indicator that are refined per cycle.");
+    prm.declare_entry("Coarsening fraction",
+                      "0",
+                      Patterns::Double(0, 1),
+                      "Fraction of the active cells, by count, with the "
+                      "smallest Kelly indicator that are coarsened per "
+                      "cycle (never cells of the contact zone).");
+    prm.declare_entry("Refine contact zone",
+                      "true",
+                      Patterns::Bool(),
+                      "Also refine every cell with a face in the active "
+                      "contact zone: slave faces with a point in contact "
+                      "and the master faces those points are paired with. "
+                      "The Kelly indicator alone ignores the contact "
+                      "traction, which acts on boundary faces.");
+    prm.declare_entry("Maximum level",
+                      "0",
+                      Patterns::Integer(0, 30),
+                      "Cells at this refinement level (counted from the "
+                      "coarse mesh, global and local refinements included) "
+                      "are not refined further. 0: the finest level of the "
+                      "initial mesh plus 'Cycles', so that with 'Steps = "
+                      "every' the contact zone stays 'Cycles' levels finer "
+                      "than the initial mesh while it moves.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  AdaptivityParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Adaptive refinement");
+    cycles              = prm.get_integer("Cycles");
+    every_step          = prm.get("Steps") == "every";
+    refinement_fraction = prm.get_double("Refinement fraction");
+    coarsening_fraction = prm.get_double("Coarsening fraction");
+    refine_contact_zone = prm.get_bool("Refine contact zone");
+    maximum_level       = prm.get_integer("Maximum level");
+    prm.leave_subsection();
+    if (refinement_fraction + coarsening_fraction > 1)
+      throw InputError(
+        "subsection 'Adaptive refinement': 'Refinement fraction' + "
+        "'Coarsening fraction' = " +
+        std::to_string(refinement_fraction + coarsening_fraction) +
+        " is more than 1 (the share of the cells marked). Lower one of "
+        "them.");
+  }
+
+
   // ------------------------------------------------------------- Everything
   void
   Parameters::declare_parameters(ParameterHandler &prm, const Counts &counts)
@@ -1137,6 +1216,7 @@ namespace Signorini
     BoundaryConditionParameters::declare_parameters(prm, counts);
     ContactParameters::declare_parameters(prm, counts);
     LoadSteppingParameters::declare_parameters(prm);
+    AdaptivityParameters::declare_parameters(prm);
     NewtonParameters::declare_parameters(prm);
     LinearSolverParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
@@ -1165,6 +1245,7 @@ namespace Signorini
     boundary_conditions.parse_parameters(prm, counts);
     contact.parse_parameters(prm, counts);
     load_stepping.parse_parameters(prm);
+    adaptivity.parse_parameters(prm);
     newton.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
@@ -1261,11 +1342,12 @@ namespace Signorini
                        "set 'Degree = 1' or '2' when 'Contact/Number of "
                        "contact pairs' > 0 (Q3 is available without "
                        "contact).");
-    if (!c.pairs.empty() && linear_solver.type != LinearSolverType::direct)
+    if (!c.pairs.empty() && linear_solver.type == LinearSolverType::cg)
       throw InputError("subsection 'Linear solver', parameter 'Type': contact "
-                       "systems (u | lambda | Lambda) are saddle-point "
-                       "systems; set 'Type = direct' when 'Contact/Number of "
-                       "contact pairs' > 0.");
+                       "systems (u | lambda | Lambda) are unsymmetric "
+                       "saddle-point systems, which CG cannot solve; set "
+                       "'Type = GMRES' (block preconditioner) or 'direct' "
+                       "when 'Contact/Number of contact pairs' > 0.");
     for (unsigned int k = 0; k < c.pairs.size(); ++k)
       {
         const auto &      p = c.pairs[k];

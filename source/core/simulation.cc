@@ -1,6 +1,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
@@ -11,6 +12,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <signorini/core/simulation.h>
@@ -275,6 +277,9 @@ namespace Signorini
     if (!contact->active())
       make_sparsity();
     linear_solver->set_null_space(dof_handler, locally_owned);
+    if (contact->active())
+      linear_solver->set_multipliers(dof_handler.n_dofs(),
+                                     contact->locally_owned_multipliers());
   }
 
 
@@ -586,7 +591,8 @@ namespace Signorini
   bool
   Simulation<dim>::solve_load_step(const double  time,
                                    const double  step_start_time,
-                                   unsigned int &iterations)
+                                   unsigned int &iterations,
+                                   const bool    resume)
   {
     history_time      = time;
     history_geometric = 0;
@@ -595,14 +601,19 @@ namespace Signorini
     for (auto &f : neumann_functions)
       f->set_time(time);
     body_force->set_time(time);
-    state_step_start = state;
+    // resume (after mesh adaptation): state_step_start is kept and the
+    // first iterate is the state as it is, with this step's Dirichlet
+    // values.
+    if (!resume)
+      state_step_start = state;
     {
       TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
       for (const auto i : owned_system)
         owned[i] = state[i];
       // Extrapolated predictor: the last converged increment, scaled to
       // this step's size; Dirichlet values then override their entries.
-      if (parameters.load_stepping.extrapolate && last_step_size > 0)
+      if (!resume && parameters.load_stepping.extrapolate &&
+          last_step_size > 0)
         for (const auto i : owned_system)
           owned[i] += (time - step_start_time) / last_step_size *
                       last_increment[i];
@@ -636,6 +647,9 @@ namespace Signorini
               state         = owned;
               first_pairing = false;
             }
+        }
+        {
+          TimerOutput::Scope t(timer, "sparsity");
           make_sparsity();
         }
         const TrilinosWrappers::MPI::Vector at_pairing = state;
@@ -667,6 +681,141 @@ namespace Signorini
     pcout << "  geometric loop not converged after "
           << c.max_geometric_iterations << " iterations" << std::endl;
     return false;
+  }
+
+
+  // Adaptive refinement: the Kelly indicator of the displacement, weighted
+  // to the energy norm of each cell's material, marks a fixed fraction of
+  // the cells; the active contact zone is always refined. The converged
+  // state and the state at the start of the step (displacements, and the
+  // multipliers as a nodal field on the slave surface) are interpolated to
+  // the new mesh.
+  template <int dim>
+  bool
+  Simulation<dim>::adapt_mesh(const double time, const double step_start_time)
+  {
+    const auto &a = parameters.adaptivity;
+    if (maximum_level == 0)
+      maximum_level = a.maximum_level > 0 ?
+                        a.maximum_level :
+                        triangulation.n_global_levels() - 1 + a.cycles;
+    update_solution();
+    // Vectors in the displacement layout: u and the multiplier field, now
+    // and at the step start.
+    std::vector<TrilinosWrappers::MPI::Vector> old_vectors;
+    unsigned int n_refine = 0, n_coarsen = 0;
+    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector>
+      transfer(dof_handler);
+    {
+      TimerOutput::Scope t(timer, "adaptation");
+      Vector<float>      indicator(triangulation.n_active_cells());
+      KellyErrorEstimator<dim>::estimate(dof_handler,
+                                         QGauss<dim - 1>(fe.degree + 1),
+                                         {},
+                                         solution,
+                                         indicator);
+      // Energy norm: sqrt(E) of the cell's material (bodies of different
+      // stiffness), and sqrt(r) in axisymmetry (the 2 pi r weight).
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            double w = materials.at(cell->material_id()).youngs_modulus();
+            if (parameters.axisymmetric)
+              w *= std::max(cell->center()[0], cell->diameter());
+            indicator[cell->active_cell_index()] *= std::sqrt(w);
+          }
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+        triangulation, indicator, a.refinement_fraction, a.coarsening_fraction);
+      if (a.refine_contact_zone && contact->active())
+        for (const auto &cell : contact->contact_zone_cells())
+          {
+            cell->clear_coarsen_flag();
+            cell->set_refine_flag();
+          }
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            if (cell->refine_flag_set() &&
+                static_cast<unsigned int>(cell->level()) >= maximum_level)
+              cell->clear_refine_flag();
+            n_refine += cell->refine_flag_set() ? 1 : 0;
+            n_coarsen += cell->coarsen_flag_set() ? 1 : 0;
+          }
+      n_refine  = Utilities::MPI::sum(n_refine, mpi_communicator);
+      n_coarsen = Utilities::MPI::sum(n_coarsen, mpi_communicator);
+      if (n_refine + n_coarsen == 0)
+        {
+          pcout << "  adaptive refinement: no cell marked (all at 'Maximum "
+                   "level'?)"
+                << std::endl;
+          return false;
+        }
+
+      for (const auto *source : {&state, &state_step_start})
+        {
+          TrilinosWrappers::MPI::Vector u(locally_owned, mpi_communicator);
+          TrilinosWrappers::MPI::Vector m(locally_owned, mpi_communicator);
+          for (const auto i : locally_owned)
+            u[i] = (*source)[i];
+          u.compress(VectorOperation::insert);
+          if (contact->active())
+            contact->multipliers_to_field(*source, m);
+          for (const auto *v : {&u, &m})
+            {
+              old_vectors.emplace_back(locally_owned,
+                                       locally_relevant,
+                                       mpi_communicator);
+              old_vectors.back() = *v;
+            }
+        }
+      std::vector<const TrilinosWrappers::MPI::Vector *> pointers;
+      for (const auto &v : old_vectors)
+        pointers.push_back(&v);
+      triangulation.prepare_coarsening_and_refinement();
+      transfer.prepare_for_coarsening_and_refinement(pointers);
+      triangulation.execute_coarsening_and_refinement();
+    }
+    setup_system();
+    TimerOutput::Scope t(timer, "adaptation");
+    std::vector<TrilinosWrappers::MPI::Vector> new_vectors(
+      old_vectors.size(),
+      TrilinosWrappers::MPI::Vector(locally_owned, mpi_communicator));
+    std::vector<TrilinosWrappers::MPI::Vector *> pointers;
+    for (auto &v : new_vectors)
+      pointers.push_back(&v);
+    transfer.interpolate(pointers);
+    for (auto &v : new_vectors)
+      constraints_hanging.distribute(v);
+
+    // Back into the system layout, with the constraint values of each time.
+    for (unsigned int k = 0; k < 2; ++k)
+      {
+        TrilinosWrappers::MPI::Vector s(owned_system, mpi_communicator);
+        for (const auto i : locally_owned)
+          s[i] = new_vectors[2 * k][i];
+        s.compress(VectorOperation::insert);
+        if (contact->active())
+          {
+            TrilinosWrappers::MPI::Vector m(locally_owned,
+                                            locally_relevant,
+                                            mpi_communicator);
+            m = new_vectors[2 * k + 1];
+            contact->multipliers_from_field(m, s);
+          }
+        make_constraints(k == 0 ? time : step_start_time);
+        constraints_values.distribute(s);
+        (k == 0 ? state : state_step_start) = s;
+      }
+    update_solution();
+    pcout << "  adaptive refinement: " << n_refine << " cells refined, "
+          << n_coarsen << " coarsened -> "
+          << triangulation.n_global_active_cells() << " cells, "
+          << dof_handler.n_dofs() << " displacement DoFs";
+    if (contact->active())
+      pcout << ", " << contact->n_lambda_dofs() << " lambda, "
+            << contact->n_friction_dofs() << " Lambda";
+    pcout << std::endl;
+    return true;
   }
 
 
@@ -816,7 +965,10 @@ namespace Signorini
         assemble(true);
         TimerOutput::Scope t(timer, "linear solve");
         TrilinosWrappers::MPI::Vector update(owned_system, mpi_communicator);
-        linear_solver->solve(system_matrix, update, newton_rhs);
+        const unsigned int krylov =
+          linear_solver->solve(system_matrix, update, newton_rhs);
+        krylov_iterations += krylov;
+        krylov_max = std::max(krylov_max, krylov);
         constraints_update.distribute(update);
         TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
         owned = state;
@@ -1768,6 +1920,12 @@ namespace Signorini
     statistics_rows.push_back(row);
 
     pcout << "  Newton iterations: " << newton_iterations << "\n";
+    if (parameters.linear_solver.type != LinearSolverType::direct)
+      {
+        pcout << "  Krylov iterations: " << krylov_iterations
+              << " in this step, at most " << krylov_max << " per solve\n";
+        krylov_iterations = krylov_max = 0;
+      }
     if (cycle_detections + points_frozen + points_released > 0)
       pcout << "  anti-cycling: " << cycle_detections
             << " status cycle(s) detected, " << points_frozen
@@ -1901,49 +2059,86 @@ namespace Signorini
         pcout << std::endl;
         // Sub-steps: the whole step first, halved after each failure.
         unsigned int cuts = 0, total_iterations = 0;
-        double       t_target = times[step - 1];
         cycle_detections = points_frozen = points_released = line_searches = 0;
-        while (t_done < times[step - 1])
-          {
-            unsigned int iterations = 0;
-            if (solve_load_step(t_target, t_done, iterations))
-              {
-                last_increment.reinit(owned_system, mpi_communicator);
-                for (const auto i : owned_system)
-                  last_increment[i] = state[i] - state_step_start[i];
-                last_increment.compress(VectorOperation::insert);
-                last_step_size = t_target - t_done;
-                total_iterations += iterations;
-                last_converged = state;
-                none_converged = false;
-                t_done         = t_target;
-                t_target       = times[step - 1];
-              }
-            else
-              {
-                // Failed attempts cost iterations too: they count.
-                total_iterations += iterations;
-                state = last_converged;
-                update_solution();
-                // Back to the initial state: the retry needs the initial
-                // multipliers again ('Initial status').
-                if (none_converged)
-                  first_pairing = true;
-                if (++cuts > parameters.load_stepping.max_cuts)
-                  throw RunError(
-                    "load step " + std::to_string(step) + " did not converge "
-                    "between t = " + format(t_done, 4) + " and t = " +
-                    format(t_target, 4) + " after " +
-                    std::to_string(parameters.load_stepping.max_cuts) +
-                    " step cuts. The results of the completed steps are in '" +
-                    parameters.output.directory +
-                    "'. Raise 'Newton/Maximum iterations' or 'Load "
-                    "stepping/Number of steps'.");
-                pcout << "  step not converged: cut to t = "
-                      << format(0.5 * (t_done + t_target), 4) << std::endl;
-                t_target = 0.5 * (t_done + t_target);
-              }
-          }
+        double t_sub_start = t_done; // start of the last converged sub-step
+        const auto advance = [&]() {
+          double t_target = times[step - 1];
+          while (t_done < times[step - 1])
+            {
+              unsigned int iterations = 0;
+              if (solve_load_step(t_target, t_done, iterations))
+                {
+                  t_sub_start = t_done;
+                  last_increment.reinit(owned_system, mpi_communicator);
+                  for (const auto i : owned_system)
+                    last_increment[i] = state[i] - state_step_start[i];
+                  last_increment.compress(VectorOperation::insert);
+                  last_step_size = t_target - t_done;
+                  total_iterations += iterations;
+                  last_converged = state;
+                  none_converged = false;
+                  t_done         = t_target;
+                  t_target       = times[step - 1];
+                }
+              else
+                {
+                  // Failed attempts cost iterations too: they count.
+                  total_iterations += iterations;
+                  state = last_converged;
+                  update_solution();
+                  // Back to the initial state: the retry needs the initial
+                  // multipliers again ('Initial status').
+                  if (none_converged)
+                    first_pairing = true;
+                  if (++cuts > parameters.load_stepping.max_cuts)
+                    throw RunError(
+                      "load step " + std::to_string(step) + " did not converge "
+                      "between t = " + format(t_done, 4) + " and t = " +
+                      format(t_target, 4) + " after " +
+                      std::to_string(parameters.load_stepping.max_cuts) +
+                      " step cuts. The results of the completed steps are in '" +
+                      parameters.output.directory +
+                      "'. Raise 'Newton/Maximum iterations' or 'Load "
+                      "stepping/Number of steps'.");
+                  pcout << "  step not converged: cut to t = "
+                        << format(0.5 * (t_done + t_target), 4) << std::endl;
+                  t_target = 0.5 * (t_done + t_target);
+                }
+            }
+        };
+        advance();
+        // Adaptive refinement: refine, transfer, solve the last sub-step
+        // again on the new mesh from the transferred converged state; if
+        // that fails, from its transferred start, with step cuts.
+        const auto &adaptivity = parameters.adaptivity;
+        if (adaptivity.every_step || step == times.size())
+          for (unsigned int cycle = 1; cycle <= adaptivity.cycles; ++cycle)
+            {
+              pcout << "  adaptive cycle " << cycle << " of "
+                    << adaptivity.cycles << std::endl;
+              if (!adapt_mesh(t_done, t_sub_start))
+                break;
+              unsigned int iterations = 0;
+              const bool   ok =
+                solve_load_step(t_done, t_sub_start, iterations, true);
+              total_iterations += iterations;
+              if (!ok)
+                {
+                  pcout << "  not converged on the refined mesh: again from "
+                           "the start of the step"
+                        << std::endl;
+                  state = state_step_start;
+                  update_solution();
+                  t_done         = t_sub_start;
+                  last_converged = state;
+                  advance();
+                }
+              last_increment.reinit(owned_system, mpi_communicator);
+              for (const auto i : owned_system)
+                last_increment[i] = state[i] - state_step_start[i];
+              last_increment.compress(VectorOperation::insert);
+              last_converged = state;
+            }
         step_cuts = cuts;
         compute_reactions();
         compute_reference_errors(times[step - 1]);

@@ -6,7 +6,9 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 
+#include <Epetra_CrsMatrix.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 #include <signorini/solver/linear_solver.h>
@@ -71,24 +73,11 @@ namespace Signorini
           }
     }
 
-
     template <int dim>
-    unsigned int
-    LinearSolver<dim>::solve(const TrilinosWrappers::SparseMatrix &A,
-                             TrilinosWrappers::MPI::Vector &       x,
-                             const TrilinosWrappers::MPI::Vector & b)
+    void
+    LinearSolver<dim>::initialize_amg(TrilinosWrappers::PreconditionAMG &amg,
+                                      const TrilinosWrappers::SparseMatrix &A)
     {
-      if (parameters.type == LinearSolverType::direct)
-        {
-          SolverControl                               control(1, 0);
-          TrilinosWrappers::SolverDirect::AdditionalData data(
-            false, parameters.direct_package);
-          TrilinosWrappers::SolverDirect solver(control, data);
-          solver.solve(A, x, b);
-          return 0;
-        }
-
-      TrilinosWrappers::PreconditionAMG                 amg;
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
       data.elliptic              = true;
       data.higher_order_elements = true;
@@ -113,6 +102,211 @@ namespace Signorini
       ml_list.set("null space: dimension", null_space->NumVectors());
       ml_list.set("null space: vectors", null_space->Values());
       amg.initialize(A, ml_list);
+    }
+
+
+    template <int dim>
+    void
+    LinearSolver<dim>::set_multipliers(const types::global_dof_index n_u_,
+                                       const IndexSet &owned_multipliers)
+    {
+      n_u     = n_u_;
+      owned_m = IndexSet(owned_multipliers.size() - n_u);
+      for (const auto i : owned_multipliers)
+        owned_m.add_index(i - n_u);
+      owned_m.compress();
+    }
+
+
+    namespace
+    {
+      // Copies the entries of the locally owned rows of @p M whose row and
+      // column lie in the given ranges ([begin, end) in the system
+      // numbering) into a new matrix with rows @p rows and columns @p cols
+      // numbered from the range starts.
+      void
+      extract_block(const TrilinosWrappers::SparseMatrix &M,
+                    const types::global_dof_index         row_begin,
+                    const types::global_dof_index         row_end,
+                    const types::global_dof_index         col_begin,
+                    const types::global_dof_index         col_end,
+                    const IndexSet &                      rows,
+                    const IndexSet &                      cols,
+                    TrilinosWrappers::SparseMatrix &      block,
+                    const MPI_Comm                        comm)
+      {
+        // Raw Epetra row views: local rows, local column ids.
+        const Epetra_CrsMatrix &E = M.trilinos_matrix();
+        std::vector<std::vector<types::global_dof_index>> columns;
+        std::vector<std::vector<double>>                  values;
+        std::vector<types::global_dof_index>              row_ids;
+        for (int lr = 0; lr < E.NumMyRows(); ++lr)
+          {
+            const auto r =
+              static_cast<types::global_dof_index>(E.RowMap().GID64(lr));
+            if (r < row_begin || r >= row_end)
+              continue;
+            int     n;
+            double *v;
+            int *   c;
+            E.ExtractMyRowView(lr, n, v, c);
+            row_ids.push_back(r - row_begin);
+            columns.emplace_back();
+            values.emplace_back();
+            for (int k = 0; k < n; ++k)
+              {
+                const auto g =
+                  static_cast<types::global_dof_index>(E.ColMap().GID64(c[k]));
+                if (g >= col_begin && g < col_end)
+                  {
+                    columns.back().push_back(g - col_begin);
+                    values.back().push_back(v[k]);
+                  }
+              }
+          }
+        TrilinosWrappers::SparsityPattern sp(rows, cols, comm);
+        for (unsigned int k = 0; k < row_ids.size(); ++k)
+          sp.add_entries(row_ids[k], columns[k].begin(), columns[k].end());
+        sp.compress();
+        block.reinit(sp);
+        for (unsigned int k = 0; k < row_ids.size(); ++k)
+          block.set(row_ids[k], columns[k], values[k]);
+        block.compress(VectorOperation::insert);
+      }
+
+      // P^-1 of the block lower-triangular preconditioner [A 0; C S].
+      class BlockPreconditioner
+      {
+      public:
+        BlockPreconditioner(const TrilinosWrappers::PreconditionAMG &amg,
+                            const TrilinosWrappers::SparseMatrix &   C,
+                            TrilinosWrappers::SolverDirect &         schur,
+                            const IndexSet &                         owned_u,
+                            const IndexSet &                         owned_m,
+                            const types::global_dof_index            n_u,
+                            const MPI_Comm                           comm)
+          : amg(amg)
+          , C(C)
+          , schur(schur)
+          , owned_u(owned_u)
+          , owned_m(owned_m)
+          , n_u(n_u)
+          , f(owned_u, comm)
+          , y(owned_u, comm)
+          , g(owned_m, comm)
+          , z(owned_m, comm)
+        {}
+
+        void
+        vmult(TrilinosWrappers::MPI::Vector &      dst,
+              const TrilinosWrappers::MPI::Vector &src) const
+        {
+          for (const auto i : owned_u)
+            f[i] = src[i];
+          f.compress(VectorOperation::insert);
+          amg.vmult(y, f);
+          C.vmult(g, y); // g = C y
+          for (const auto i : owned_m)
+            g[i] = src[n_u + i] - g[i];
+          g.compress(VectorOperation::insert);
+          schur.solve(z, g);
+          for (const auto i : owned_u)
+            dst[i] = y[i];
+          for (const auto i : owned_m)
+            dst[n_u + i] = z[i];
+          dst.compress(VectorOperation::insert);
+        }
+
+      private:
+        const TrilinosWrappers::PreconditionAMG &amg;
+        const TrilinosWrappers::SparseMatrix &   C;
+        TrilinosWrappers::SolverDirect &         schur;
+        const IndexSet &                         owned_u, &owned_m;
+        const types::global_dof_index            n_u;
+        mutable TrilinosWrappers::MPI::Vector    f, y, g, z;
+      };
+    } // namespace
+
+
+    template <int dim>
+    unsigned int
+    LinearSolver<dim>::solve_blocks(const TrilinosWrappers::SparseMatrix &M,
+                                    TrilinosWrappers::MPI::Vector &       x,
+                                    const TrilinosWrappers::MPI::Vector & b)
+    {
+      const MPI_Comm comm = M.get_mpi_communicator();
+      const auto     n    = M.m();
+
+      TrilinosWrappers::SparseMatrix A, Bt, C, D;
+      extract_block(M, 0, n_u, 0, n_u, owned, owned, A, comm);
+      extract_block(M, 0, n_u, n_u, n, owned, owned_m, Bt, comm);
+      extract_block(M, n_u, n, 0, n_u, owned_m, owned, C, comm);
+      extract_block(M, n_u, n, n_u, n, owned_m, owned_m, D, comm);
+
+      // S = D - C diag(A)^-1 B^T on the union of the two patterns.
+      TrilinosWrappers::MPI::Vector inverse_diagonal(owned, comm);
+      for (const auto i : owned)
+        inverse_diagonal[i] = 1. / A.diag_element(i);
+      inverse_diagonal.compress(VectorOperation::insert);
+      TrilinosWrappers::SparseMatrix CB;
+      C.mmult(CB, Bt, inverse_diagonal);
+      TrilinosWrappers::SparsityPattern sp(owned_m, owned_m, comm);
+      for (const auto *P : {&D, &CB})
+        for (const auto r : owned_m)
+          for (auto it = P->begin(r); it != P->end(r); ++it)
+            sp.add(r, it->column());
+      sp.compress();
+      TrilinosWrappers::SparseMatrix S;
+      S.reinit(sp);
+      for (const auto r : owned_m)
+        {
+          for (auto it = D.begin(r); it != D.end(r); ++it)
+            S.add(r, it->column(), it->value());
+          for (auto it = CB.begin(r); it != CB.end(r); ++it)
+            S.add(r, it->column(), -it->value());
+        }
+      S.compress(VectorOperation::add);
+
+      TrilinosWrappers::PreconditionAMG amg;
+      initialize_amg(amg, A);
+      SolverControl                                  schur_control(1, 0);
+      TrilinosWrappers::SolverDirect::AdditionalData schur_data(
+        false, parameters.direct_package);
+      TrilinosWrappers::SolverDirect schur(schur_control, schur_data);
+      schur.initialize(S);
+      const BlockPreconditioner preconditioner(
+        amg, C, schur, owned, owned_m, n_u, comm);
+
+      SolverControl control(parameters.max_iterations,
+                            parameters.relative_tolerance * b.l2_norm());
+      SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+        control,
+        SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(200, true));
+      gmres.solve(M, x, b, preconditioner);
+      return control.last_step();
+    }
+
+
+    template <int dim>
+    unsigned int
+    LinearSolver<dim>::solve(const TrilinosWrappers::SparseMatrix &A,
+                             TrilinosWrappers::MPI::Vector &       x,
+                             const TrilinosWrappers::MPI::Vector & b)
+    {
+      if (parameters.type == LinearSolverType::direct)
+        {
+          SolverControl                               control(1, 0);
+          TrilinosWrappers::SolverDirect::AdditionalData data(
+            false, parameters.direct_package);
+          TrilinosWrappers::SolverDirect solver(control, data);
+          solver.solve(A, x, b);
+          return 0;
+        }
+
+      if (owned_m.size() > 0)
+        return solve_blocks(A, x, b);
+      TrilinosWrappers::PreconditionAMG amg;
+      initialize_amg(amg, A);
 
       SolverControl control(parameters.max_iterations,
                             parameters.relative_tolerance * b.l2_norm());

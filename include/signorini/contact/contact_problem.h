@@ -265,6 +265,30 @@ namespace Signorini
       std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>>
       nodal_fields(const DoFHandler<dim> &scalar_dofs) const;
 
+      /**
+       * The multipliers of @p state as a field on the displacement DoFs,
+       * for solution transfer across refinement: at a slave node,
+       * component 0 holds lambda and components 1..dim-1 hold Lambda; zero
+       * elsewhere. Writes the owned entries of @p field (displacement
+       * layout, no ghosts).
+       */
+      void
+      multipliers_to_field(const TrilinosWrappers::MPI::Vector &state,
+                           TrilinosWrappers::MPI::Vector &field) const;
+
+      /** The inverse of multipliers_to_field(): the owned multipliers of
+       * @p state_owned from the ghosted @p field (after setup() on the new
+       * mesh). */
+      void
+      multipliers_from_field(const TrilinosWrappers::MPI::Vector &field,
+                             TrilinosWrappers::MPI::Vector &state_owned) const;
+
+      /** Locally owned cells with a face in the active contact zone: slave
+       * faces with a point in contact at the last evaluation, and master
+       * faces such a point is paired with (adaptive refinement). */
+      std::vector<typename DoFHandler<dim>::active_cell_iterator>
+      contact_zone_cells() const;
+
       /** Number of slave nodes (= lambda DoFs). */
       unsigned int
       n_slave_nodes() const
@@ -420,6 +444,11 @@ namespace Signorini
       std::map<types::global_dof_index, NodeInfo> nodes; // key: x-dof
       std::vector<SlaveFace>                      slave_faces;
       std::vector<MasterFace>                     master_faces;
+      // The master faces this rank owns, in their order within
+      // master_faces from index own_master_offset on.
+      std::vector<typename DoFHandler<dim>::active_cell_iterator>
+                   own_master_cells;
+      unsigned int own_master_offset = 0;
       // Constraint lines of master DoFs, from their owners.
       std::vector<std::pair<types::global_dof_index,
                             std::vector<std::pair<types::global_dof_index,

@@ -151,6 +151,20 @@ namespace Signorini
     void        parse_parameters(ParameterHandler &prm);
   };
 
+  /** Adaptive refinement after load steps ('Adaptive refinement'). */
+  struct AdaptivityParameters
+  {
+    unsigned int cycles;              // refine-and-resolve cycles, 0: off
+    bool         every_step;          // false: the last load step only
+    double       refinement_fraction; // of the active cells, by count
+    double       coarsening_fraction;
+    bool         refine_contact_zone;
+    unsigned int maximum_level; // finest level of a cell, 0: automatic
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
   struct NewtonParameters
   {
     unsigned int max_iterations;
@@ -315,6 +329,7 @@ namespace Signorini
     BoundaryConditionParameters boundary_conditions;
     ContactParameters           contact;
     LoadSteppingParameters      load_stepping;
+    AdaptivityParameters        adaptivity;
     NewtonParameters            newton;
     LinearSolverParameters      linear_solver;
     OutputParameters            output;

@@ -97,10 +97,19 @@ namespace Signorini
     block_residuals() const;
     void
     make_sparsity();
+    /** Solves the step from @p step_start_time to @p time; with @p resume
+     * from the current state and the kept state_step_start (after mesh
+     * adaptation), else from the step start with the predictor. */
     bool
     solve_load_step(const double   time,
                     const double   step_start_time,
-                    unsigned int & n_iterations);
+                    unsigned int & n_iterations,
+                    const bool     resume = false);
+    /** One adaptive refinement cycle at time @p time (the step started at
+     * @p step_start_time): marks, refines, transfers state and
+     * state_step_start to the new mesh. False: no cell was marked. */
+    bool
+    adapt_mesh(const double time, const double step_start_time);
     bool
     newton(unsigned int &n_iterations);
     double
@@ -188,6 +197,7 @@ namespace Signorini
 
     double                           force_scale = 0;
     double model_size = 0; // bounding-box diagonal of the mesh [m]
+    unsigned int maximum_level = 0; // adaptivity: finest level (0: not set)
     std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
     // Mean displacement of the DoFs each Dirichlet condition constrains,
     // per component, and which components it constrains (statistics.csv:
@@ -215,6 +225,7 @@ namespace Signorini
     int            mindlin_direction = 0;
     bool           mindlin_turned    = false;
     unsigned int line_searches = 0, run_line_searches = 0;
+    unsigned int krylov_iterations = 0, krylov_max = 0; // per load step
     unsigned int n_failed_checks = 0;
     unsigned int run_cuts = 0, run_cycles = 0, run_frozen = 0,
                  run_released = 0;

@@ -2,6 +2,7 @@
 #define signorini_solver_linear_solver_h
 
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -18,7 +19,8 @@ class Epetra_MultiVector;
  * contact. Option: CG or GMRES preconditioned by Trilinos ML AMG whose
  * near-null space is the set of rigid-body modes (dim translations and
  * dim(dim-1)/2 rotations) computed from the displacement support points,
- * since deal.II 9.4's AMG interface only knows translations.
+ * since deal.II 9.4's AMG interface only knows translations. Contact
+ * systems: GMRES with a block preconditioner (set_multipliers()).
  */
 namespace Signorini
 {
@@ -41,6 +43,20 @@ namespace Signorini
       set_null_space(const DoFHandler<dim> &dof_handler,
                      const IndexSet &       locally_owned_dofs);
 
+      /**
+       * Contact systems: the system index space is u in [0, n_u) followed
+       * by the multipliers; @p owned_multipliers are this rank's (system
+       * numbering). With n_u < size, GMRES runs on the whole system with
+       * the block lower-triangular preconditioner
+       *   P = [A 0; C S],  S = D - C diag(A)^-1 B^T,
+       * of the blocks [A B^T; C D] (u rows first): one ML AMG V-cycle with
+       * rigid-body modes for A, and S (multipliers only: a surface-sized
+       * matrix) factorised by MUMPS.
+       */
+      void
+      set_multipliers(const types::global_dof_index n_u,
+                      const IndexSet &              owned_multipliers);
+
       /** Solves A x = b; returns the Krylov iterations (0 for direct). */
       unsigned int
       solve(const TrilinosWrappers::SparseMatrix &A,
@@ -52,6 +68,16 @@ namespace Signorini
       std::vector<std::vector<double>>    modes; // locally owned entries
       IndexSet                            owned;
       std::unique_ptr<Epetra_MultiVector> null_space;
+      types::global_dof_index             n_u = 0;
+      IndexSet                            owned_m; // multipliers, from 0
+
+      unsigned int
+      solve_blocks(const TrilinosWrappers::SparseMatrix &A,
+                   TrilinosWrappers::MPI::Vector &       x,
+                   const TrilinosWrappers::MPI::Vector & b);
+      void
+      initialize_amg(TrilinosWrappers::PreconditionAMG &   amg,
+                     const TrilinosWrappers::SparseMatrix &A);
     };
   } // namespace Solver
 } // namespace Signorini
