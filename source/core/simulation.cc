@@ -2061,6 +2061,14 @@ namespace Signorini
         unsigned int cuts = 0, total_iterations = 0;
         cycle_detections = points_frozen = points_released = line_searches = 0;
         double t_sub_start = t_done; // start of the last converged sub-step
+        // The converged increment of the last (sub)step: the extrapolated
+        // predictor of the next one.
+        const auto record_increment = [&]() {
+          last_increment.reinit(owned_system, mpi_communicator);
+          for (const auto i : owned_system)
+            last_increment[i] = state[i] - state_step_start[i];
+          last_increment.compress(VectorOperation::insert);
+        };
         const auto advance = [&]() {
           double t_target = times[step - 1];
           while (t_done < times[step - 1])
@@ -2069,10 +2077,7 @@ namespace Signorini
               if (solve_load_step(t_target, t_done, iterations))
                 {
                   t_sub_start = t_done;
-                  last_increment.reinit(owned_system, mpi_communicator);
-                  for (const auto i : owned_system)
-                    last_increment[i] = state[i] - state_step_start[i];
-                  last_increment.compress(VectorOperation::insert);
+                  record_increment();
                   last_step_size = t_target - t_done;
                   total_iterations += iterations;
                   last_converged = state;
@@ -2133,10 +2138,7 @@ namespace Signorini
                   last_converged = state;
                   advance();
                 }
-              last_increment.reinit(owned_system, mpi_communicator);
-              for (const auto i : owned_system)
-                last_increment[i] = state[i] - state_step_start[i];
-              last_increment.compress(VectorOperation::insert);
+              record_increment();
               last_converged = state;
             }
         step_cuts = cuts;
