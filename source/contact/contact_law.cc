@@ -197,10 +197,12 @@ namespace Signorini
 
       if (!response.friction_active)
         {
-          // L_f^f = +w psi Lambda, K_ff = I: drives Lambda to 0.
-          response.r_f = state.Lambda;
+          // L_f^f = +w psi Lambda, K_ff = I: drives Lambda to 0; weighted
+          // by free_friction_scale so that all Lambda rows share one unit.
+          const double s = parameters.free_friction_scale;
+          response.r_f   = s * state.Lambda;
           for (unsigned int k = 0; k < dim - 1; ++k)
-            response.drf_dLambda[k][k] = 1.;
+            response.drf_dLambda[k][k] = s;
           return response;
         }
 
@@ -224,7 +226,13 @@ namespace Signorini
       if (frozen_slip)
         q_frozen /= q_frozen.norm();
 
-      if ((norm_h <= 1. || state.freeze_stick) && !frozen_slip)
+      // |h| <= 1 up to round-off: at the first iterate of a step a point
+      // that slipped in the last one has T Lambda on the unit circle and
+      // v = 0, so |h| = 1 +/- 1e-16 and the decision would be round-off
+      // (different in SI and in mm-N-MPa). Such a tie is stick: the point
+      // has not slipped in this step yet.
+      constexpr double tie = 1e-12;
+      if ((norm_h <= 1. + tie || state.freeze_stick) && !frozen_slip)
         {
           // Stick: P_B(h) = h.
           response.status = PointStatus::stick;

@@ -173,6 +173,18 @@ namespace Signorini
       law.threshold_coupling = parameters.contact.threshold_coupling;
       law.penalty            = parameters.contact.penalty;
       law.zero_threshold     = 1e-12 * youngs[p];
+      if (law.mu > 0)
+        {
+          // Friction law of a point with inactive friction, weighted like
+          // an active point at 1e-4 of the pressure level: unit invariant,
+          // and small enough that a node at the contact edge (mortar and
+          // Gauss rules mix free and active points in its Lambda row)
+          // follows its active points. See doc/robustness.md for the sweep
+          // of the factor.
+          constexpr double free_weight = 1e-4;
+          law.free_friction_scale =
+            free_weight * law.mu * p_ref[p] / rho_t[p];
+        }
       return law;
     }
 
@@ -435,6 +447,7 @@ namespace Signorini
       // pressure is known p_ref = 1e-3 E.
       rho_n.assign(n_pairs, 0.);
       rho_t.assign(n_pairs, 0.);
+      p_ref.assign(n_pairs, 0.);
       face_size.assign(n_pairs, 0.);
       youngs.assign(n_pairs, 0.);
       for (unsigned int p = 0; p < n_pairs; ++p)
@@ -450,9 +463,10 @@ namespace Signorini
           face_size[p] = hs / hc;
           youngs[p]    = E;
           rho_n[p]     = pairs[p].rho_n_factor * E / face_size[p];
+          p_ref[p]     = 1e-3 * E;
           rho_t[p]     = pairs[p].friction > 0 ?
                            pairs[p].rho_t_factor * rho_n[p] /
-                             (pairs[p].friction * 1e-3 * E) :
+                             (pairs[p].friction * p_ref[p]) :
                            1.;
         }
 
@@ -794,7 +808,10 @@ namespace Signorini
       if (mortar)
         segment(state, x_master, tree);
 
-      const auto &contact = parameters.contact;
+      const auto &       contact      = parameters.contact;
+      const unsigned int freeze_after = contact.freeze_after_cycles;
+      unsigned int       n_pinned     = 0;
+      ++pairings_in_step;
       for (auto &point : points)
         {
           const auto &       face = slave_faces[point.face];
@@ -807,6 +824,19 @@ namespace Signorini
 
           point.paired      = false;
           point.master_face = -1;
+          // Pairs the point with master face m if its projection onto m
+          // converges within the tolerance (also just outside the face).
+          const auto pair_with_face = [&](const int m) {
+            const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
+            if (!proj.converged ||
+                proj.violation > contact.projection_tolerance)
+              return false;
+            point.paired      = true;
+            point.master_face = m;
+            point.normal      = proj.normal;
+            face_shape_values<dim>(n_face_nodes, proj.xi, point.N_m);
+            return true;
+          };
           if (obstacles[p])
             {
               const auto projection = obstacles[p]->project(x_e);
@@ -815,20 +845,17 @@ namespace Signorini
               point.x_m_rigid       = projection.x_m;
               point.rigid_increment = rigid_increment[p];
             }
-          else if (const int m = point.segment_master; m >= 0)
+          else if (point.pinned_face >= 0 && !mortar)
             {
-              // Mortar: the master face of the point's piece (the search
-              // below only if the projection leaves that face).
-              const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
-              if (proj.converged &&
-                  proj.violation <= contact.projection_tolerance)
-                {
-                  point.paired      = true;
-                  point.master_face = m;
-                  point.normal      = proj.normal;
-                  face_shape_values<dim>(n_face_nodes, proj.xi, point.N_m);
-                }
+              // Pinned by a pairing 2-cycle: the face is kept while the
+              // projection onto it stays within the tolerance.
+              if (!pair_with_face(point.pinned_face))
+                point.pinned_face = -1;
             }
+          else if (point.segment_master >= 0)
+            // Mortar: the master face of the point's piece (the search
+            // below only if the projection leaves that face).
+            pair_with_face(point.segment_master);
           if (!obstacles[p] && !point.paired)
             {
               BoundingBox<dim> query(std::make_pair(x_e, x_e));
@@ -879,6 +906,18 @@ namespace Signorini
                   face_shape_values<dim>(n_face_nodes, best.xi, point.N_m);
                 }
             }
+          // Pairing 2-cycle: back on the face of two pairings before.
+          if (!mortar && !obstacles[p] && point.pinned_face < 0 &&
+              freeze_after > 0 && point.master_face >= 0 &&
+              pairings_in_step >= 3 &&
+              point.master_face == point.geo_face_2 &&
+              point.master_face != point.geo_face_1)
+            {
+              point.pinned_face = point.master_face;
+              ++n_pinned;
+            }
+          point.geo_face_2 = point.geo_face_1;
+          point.geo_face_1 = point.master_face;
           // The contact normal points into the master (formulation.md 2),
           // along the slave's outward normal.
           if (!point.paired)
@@ -893,6 +932,7 @@ namespace Signorini
             }
           point.tangents = tangent_basis<dim>(point.normal);
         }
+      n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
     }
 
 
@@ -974,6 +1014,22 @@ namespace Signorini
                     points[i].status         = old_points[j].status;
                     points[i].friction_active = old_points[j].friction_active;
                     points[i].slip_direction  = old_points[j].slip_direction;
+                    // The geometric loop's history and freeze (the
+                    // segmentation changes with every pairing).
+                    const auto &o               = old_points[j];
+                    points[i].geo_status_1      = o.geo_status_1;
+                    points[i].geo_status_2      = o.geo_status_2;
+                    points[i].geo_direction_1   = o.geo_direction_1;
+                    points[i].geo_direction_2   = o.geo_direction_2;
+                    points[i].geometric_freeze  = o.geometric_freeze;
+                    points[i].was_frozen        = o.geometric_freeze;
+                    points[i].freeze_contact =
+                      o.geometric_freeze && o.freeze_contact;
+                    points[i].freeze_stick =
+                      o.geometric_freeze && o.freeze_stick;
+                    points[i].frozen_slip_direction =
+                      o.geometric_freeze ? o.frozen_slip_direction :
+                                           Tensor<1, dim>();
                   }
             }
         }
@@ -1002,8 +1058,11 @@ namespace Signorini
           const double s = Utilities::MPI::sum(sum2[p], comm);
           const double n = Utilities::MPI::sum(count[p], comm);
           if (pairs[p].friction > 0 && n > 0 && s > 0)
-            rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
-                       (pairs[p].friction * std::sqrt(s / n));
+            {
+              p_ref[p] = std::sqrt(s / n);
+              rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
+                         (pairs[p].friction * p_ref[p]);
+            }
         }
     }
 
@@ -1292,9 +1351,17 @@ namespace Signorini
               const auto        rp = evaluate_contact_law(plain, law);
               const PointStatus plain_status = label(rp);
               ++stats.n_frozen;
-              stats.n_violated += plain_status != status ||
-                                  (status == PointStatus::slip &&
-                                   rp.slip_direction * r.slip_direction < 0);
+              const bool violated =
+                plain_status != status ||
+                (status == PointStatus::slip &&
+                 rp.slip_direction * r.slip_direction < 0);
+              if (point.geometric_freeze)
+                {
+                  ++stats.n_geometric_frozen;
+                  stats.n_geometric_violated += violated;
+                }
+              else
+                stats.n_violated += violated;
             }
           if (new_iterate && !frozen)
             {
@@ -1467,6 +1534,10 @@ namespace Signorini
       stats.n_frozen   = Utilities::MPI::sum(stats.n_frozen, comm);
       stats.n_newly_frozen = Utilities::MPI::sum(stats.n_newly_frozen, comm);
       stats.n_violated = Utilities::MPI::sum(stats.n_violated, comm);
+      stats.n_geometric_frozen =
+        Utilities::MPI::sum(stats.n_geometric_frozen, comm);
+      stats.n_geometric_violated =
+        Utilities::MPI::sum(stats.n_geometric_violated, comm);
       return stats;
     }
 
@@ -1482,9 +1553,77 @@ namespace Signorini
           point.direction_before      = point.slip_direction;
           point.cycles                = 0;
           point.changes               = 0;
-          point.was_frozen            = false;
+          // A status frozen by the geometric loop stays for the step.
+          point.was_frozen = point.geometric_freeze;
+          if (!point.geometric_freeze)
+            clear_freeze(point);
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::start_geometric_loop()
+    {
+      for (auto &point : points)
+        {
+          point.geo_status_1     = point.status;
+          point.geo_status_2     = point.status;
+          point.geo_direction_1  = point.slip_direction;
+          point.geo_direction_2  = point.slip_direction;
+          point.geometric_freeze = false;
+          point.geo_face_1       = -1;
+          point.geo_face_2       = -1;
+          point.pinned_face      = -1;
           clear_freeze(point);
         }
+      pairings_in_step = 0;
+      n_newly_pinned   = 0;
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::end_geometric_iteration(const unsigned int g)
+    {
+      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
+      unsigned int       n            = 0;
+      for (auto &point : points)
+        {
+          const PointStatus status = point.status;
+          const auto &      dir    = point.slip_direction;
+          // Same status as two pairings before (a slip in a direction not
+          // turned against it), different from the last one (or reversed).
+          const bool same_as_2 =
+            status == point.geo_status_2 &&
+            (status != PointStatus::slip || dir * point.geo_direction_2 >= 0);
+          const bool differs_from_1 =
+            status != point.geo_status_1 ||
+            (status == PointStatus::slip && dir * point.geo_direction_1 < 0);
+          if (freeze_after > 0 && g >= 3 && !point.geometric_freeze &&
+              same_as_2 && differs_from_1)
+            {
+              ++n;
+              point.geometric_freeze = true;
+              point.was_frozen       = true;
+              point.freeze_contact   = true;
+              const PointStatus other = point.geo_status_1;
+              if (status == PointStatus::free || other == PointStatus::free)
+                ; // contact/free: kept in contact
+              else if (status == PointStatus::slip &&
+                       other == PointStatus::slip)
+                point.freeze_stick = true; // reversed and back
+              else if (status == PointStatus::slip)
+                point.frozen_slip_direction = dir;
+              else if (other == PointStatus::slip)
+                point.frozen_slip_direction = point.geo_direction_1;
+            }
+          point.geo_status_2    = point.geo_status_1;
+          point.geo_direction_2 = point.geo_direction_1;
+          point.geo_status_1    = status;
+          point.geo_direction_1 = dir;
+        }
+      return Utilities::MPI::sum(n, comm);
     }
 
 
@@ -1494,7 +1633,7 @@ namespace Signorini
     {
       unsigned int n = 0;
       for (auto &point : points)
-        if (point.freeze_contact)
+        if (point.freeze_contact && !point.geometric_freeze)
           {
             ++n;
             clear_freeze(point);

@@ -862,7 +862,12 @@ namespace Signorini
                       "times in one Newton solve is frozen: kept in contact, "
                       "or kept slipping in its last slip direction. A frozen "
                       "point that the plain law contradicts at convergence "
-                      "is released and Newton goes on. 0: never freeze.");
+                      "is released and Newton goes on. Across pairings "
+                      "(geometric loop), a point back at its converged "
+                      "status of two pairings before keeps one status, and "
+                      "a point back on its master face of two pairings "
+                      "before stays on that face, for the rest of the load "
+                      "step. 0: never freeze.");
     for (unsigned int k = 1; k <= counts.n_pairs; ++k)
       {
         prm.enter_subsection("Pair " + std::to_string(k));

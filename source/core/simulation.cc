@@ -628,12 +628,22 @@ namespace Signorini
 
     const auto &c       = parameters.contact;
     const bool  verbose = parameters.output.verbosity != Verbosity::quiet;
+    contact->start_geometric_loop();
     for (unsigned int g = 1; g <= c.max_geometric_iterations; ++g)
       {
         history_geometric = g;
         {
           TimerOutput::Scope t(timer, "pairing");
           contact->pair(state, time, step_start_time);
+          if (const unsigned int n = contact->newly_pinned(); n > 0)
+            {
+              cycle_detections += n;
+              points_frozen += n;
+              pcout << "    geometric loop: " << n
+                    << " point(s) back on their master face of two pairings"
+                       " before: pinned to it for the rest of the step"
+                    << std::endl;
+            }
           if (first_pairing)
             {
               TrilinosWrappers::MPI::Vector owned(owned_system,
@@ -676,7 +686,26 @@ namespace Signorini
                 << std::setprecision(2) << ratio << std::defaultfloat
                 << std::endl;
         if (ratio <= c.geometric_tolerance)
-          return true;
+          {
+            if (contact_statistics.n_geometric_frozen > 0)
+              pcout << "    geometric loop converged with "
+                    << contact_statistics.n_geometric_frozen
+                    << " point(s) frozen by the geometric loop, "
+                    << contact_statistics.n_geometric_violated
+                    << " of them against the plain contact law" << std::endl;
+            return true;
+          }
+        // Anti-cycling across pairings: points back at their status of two
+        // pairings before keep one status for the rest of the step.
+        if (const unsigned int n = contact->end_geometric_iteration(g); n > 0)
+          {
+            cycle_detections += n;
+            points_frozen += n;
+            pcout << "    geometric loop: " << n
+                  << " point(s) back at their status of two pairings before:"
+                     " status frozen for the rest of the step"
+                  << std::endl;
+          }
       }
     pcout << "  geometric loop not converged after "
           << c.max_geometric_iterations << " iterations" << std::endl;

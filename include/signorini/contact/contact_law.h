@@ -92,6 +92,18 @@ namespace Signorini
        * augmented Lagrangian law with lambda_f as above.
        */
       bool penalty = false;
+
+      /**
+       * Weight of the friction law of a point whose friction is inactive
+       * (free, or closed with a zero threshold): its Lambda row is
+       * free_friction_scale * Lambda [Pa m], so that it has the units of
+       * the active rows, (mu lambda_f / rho_t)(T Lambda - P_B(h)).
+       * ContactProblem uses 1e-4 mu p_ref / rho_t, with p_ref the pressure
+       * level of rho_t. With weight 1 (formulation.md 4 as written) the
+       * mixture of free and active points in one node's Lambda row
+       * (mortar, Gauss) depends on the unit system. Default 1.
+       */
+      double free_friction_scale = 1.;
     };
 
 

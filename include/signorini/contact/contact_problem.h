@@ -68,6 +68,10 @@ namespace Signorini
       unsigned int n_frozen   = 0; // points whose status is frozen now
       unsigned int n_newly_frozen = 0; // frozen at this evaluation
       unsigned int n_violated = 0; // frozen, but the plain law disagrees
+      // Frozen by the geometric loop (kept to the end of the load step),
+      // and among them those the plain law disagrees with.
+      unsigned int n_geometric_frozen   = 0;
+      unsigned int n_geometric_violated = 0;
     };
 
     template <int dim>
@@ -210,6 +214,39 @@ namespace Signorini
       start_newton_solve();
       unsigned int
       release_frozen();
+
+      /**
+       * Anti-cycling across pairings (formulation.md 7.3 and 8). A point
+       * whose converged status at the end of geometric iteration g equals
+       * its status at the end of g-2 and differs from g-1 makes the fixed
+       * point on the geometry 2-cycle: each pairing selects the other
+       * status set. Its status is frozen as in a Newton cycle (contact;
+       * slip in the last slip direction; stick after a reversal) for the
+       * rest of the load step; Newton does not release it.
+       * start_geometric_loop() clears the history at the start of a step;
+       * end_geometric_iteration() records the statuses after the Newton
+       * solve of iteration @p g and returns the number of points newly
+       * frozen (over all ranks).
+       */
+      void
+      start_geometric_loop();
+      unsigned int
+      end_geometric_iteration(const unsigned int g);
+
+      /**
+       * Pairing 2-cycles (meshed masters, non-mortar rules): a point whose
+       * new master face is the one of two pairings before and not the one
+       * of the last pairing sits at a kink of the master surface, where
+       * each pairing's normal moves it onto the other face. It is pinned to
+       * that face for the rest of the step (projected onto it, also just
+       * outside it, while the projection tolerance allows). The number of
+       * points pinned by the last pair() call, over all ranks.
+       */
+      unsigned int
+      newly_pinned() const
+      {
+        return n_newly_pinned;
+      }
 
       /** Opaque copy of the per-point state (statuses, values, anti-cycling
        * history): trial evaluations (line search) restore it so that the
@@ -357,6 +394,15 @@ namespace Signorini
         bool           freeze_contact = false;
         Tensor<1, dim> frozen_slip_direction; // zero: not frozen
         bool           freeze_stick = false;
+        // Geometric loop: converged statuses at the end of the last two
+        // geometric iterations of the step; frozen for the step.
+        PointStatus    geo_status_1 = PointStatus::free;
+        PointStatus    geo_status_2 = PointStatus::free;
+        Tensor<1, dim> geo_direction_1, geo_direction_2;
+        bool           geometric_freeze = false;
+        // Master faces of the last two pairings of the step (-1: none yet),
+        // and the face a pairing 2-cycle pinned the point to.
+        int geo_face_1 = -1, geo_face_2 = -1, pinned_face = -1;
         Tensor<1, dim>     slip_direction;          // h / |h| if slipping
         double             gap = 0, lambda = 0;
         Tensor<1, dim - 1> Lambda, slip;
@@ -433,8 +479,9 @@ namespace Signorini
       unsigned int                                     segment_order = 0;
       std::vector<std::unique_ptr<RigidObstacle<dim>>> obstacles; // per pair
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
-      std::vector<double> rho_n, rho_t, face_size, youngs;         // per pair
+      std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
       unsigned int        iterates_recorded = 0; // in this Newton solve
+      unsigned int        n_newly_pinned = 0, pairings_in_step = 0;
 
       types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;
       unsigned int            n_nodes_total = 0;
