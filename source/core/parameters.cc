@@ -531,6 +531,16 @@ namespace Signorini
                       "line. Large augmentation coefficients (rho_n = 1e6 "
                       "E/h) put the floor above 'Relative tolerance'. 0: "
                       "off.");
+    prm.declare_entry("Tolerance between pairings",
+                      "1e-6",
+                      Patterns::Double(0, 1),
+                      "Contact: relative residual at which a Newton solve "
+                      "with settled statuses hands over to the next pairing "
+                      "(geometric iteration) instead of converging to "
+                      "'Relative tolerance' on a pairing that is about to "
+                      "change. The last geometric iteration of a step always "
+                      "ends at 'Relative tolerance'. 0: every solve to "
+                      "'Relative tolerance'.");
     prm.declare_entry("Line search steps",
                       "0",
                       Patterns::Integer(0, 20),
@@ -556,6 +566,7 @@ namespace Signorini
     check_jacobian     = prm.get_bool("Check Jacobian");
     line_search_steps  = prm.get_integer("Line search steps");
     stagnation_tolerance = prm.get_double("Stagnation tolerance");
+    tolerance_between_pairings = prm.get_double("Tolerance between pairings");
     prm.leave_subsection();
   }
 

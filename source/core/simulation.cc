@@ -664,7 +664,14 @@ namespace Signorini
         }
         const TrilinosWrappers::MPI::Vector at_pairing = state;
         unsigned int                        its        = 0;
-        const bool                          ok         = newton(its);
+        // A pairing that will change is not worth the last quadratic
+        // iterations: hand over at 'Tolerance between pairings' (not in
+        // the last allowed geometric iteration).
+        const double handover =
+          g < c.max_geometric_iterations ?
+            parameters.newton.tolerance_between_pairings :
+            0.;
+        const bool ok = newton(its, handover);
         iterations += its;
         if (!ok)
           return false;
@@ -687,6 +694,15 @@ namespace Signorini
                 << std::endl;
         if (ratio <= c.geometric_tolerance)
           {
+            // The pairing stays: finish the solve at 'Relative tolerance'.
+            if (handover > 0)
+              {
+                unsigned int more = 0;
+                const bool   done = newton(more);
+                iterations += more;
+                if (!done)
+                  return false;
+              }
             if (contact_statistics.n_geometric_frozen > 0)
               pcout << "    geometric loop converged with "
                     << contact_statistics.n_geometric_frozen
@@ -853,7 +869,7 @@ namespace Signorini
   // status changed since the previous iterate.
   template <int dim>
   bool
-  Simulation<dim>::newton(unsigned int &iterations)
+  Simulation<dim>::newton(unsigned int &iterations, const double tolerance)
   {
     const bool verbose = parameters.output.verbosity == Verbosity::verbose;
     const bool show_contact =
@@ -890,9 +906,13 @@ namespace Signorini
                                     external_force.l2_norm(),
                                     residual_0});
           }
+        const double relative_tolerance =
+          tolerance > 0 ? std::max(tolerance,
+                                   parameters.newton.relative_tolerance) :
+                          parameters.newton.relative_tolerance;
         const auto small = [&](const double r) {
           return r <= parameters.newton.absolute_tolerance ||
-                 r <= parameters.newton.relative_tolerance * force_scale;
+                 r <= relative_tolerance * force_scale;
         };
         const bool statuses_settled =
           !contact->active() || contact_statistics.n_changed == 0;
@@ -902,7 +922,7 @@ namespace Signorini
         // augmentation coefficients: rho_n times the round-off of the
         // positions) is as small as it gets.
         const bool stagnated =
-          iterations >= 2 && statuses_settled && settled_before &&
+          iterations >= 1 && statuses_settled && settled_before &&
           residual > 0.5 * residual_before &&
           residual <= parameters.newton.stagnation_tolerance * force_scale;
         settled_before  = statuses_settled;

@@ -173,6 +173,7 @@ namespace Signorini
     bool         check_jacobian;
     unsigned int line_search_steps; // 0: full Newton updates
     double       stagnation_tolerance;
+    double       tolerance_between_pairings;
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

@@ -110,8 +110,11 @@ namespace Signorini
      * state_step_start to the new mesh. False: no cell was marked. */
     bool
     adapt_mesh(const double time, const double step_start_time);
+    /** Newton loop on the current pairing; @p tolerance > 0 replaces
+     * 'Relative tolerance' once the statuses have settled (a solve that
+     * hands over to a new pairing). */
     bool
-    newton(unsigned int &n_iterations);
+    newton(unsigned int &n_iterations, const double tolerance = 0.);
     double
     line_search(const TrilinosWrappers::MPI::Vector &base,
                 const TrilinosWrappers::MPI::Vector &update,
