@@ -1355,6 +1355,9 @@ namespace Signorini
                 plain_status != status ||
                 (status == PointStatus::slip &&
                  rp.slip_direction * r.slip_direction < 0);
+              point.plain_status    = plain_status;
+              point.plain_direction = rp.slip_direction;
+              point.plain_violated  = violated;
               if (point.geometric_freeze)
                 {
                   ++stats.n_geometric_frozen;
@@ -1553,6 +1556,7 @@ namespace Signorini
           point.direction_before      = point.slip_direction;
           point.cycles                = 0;
           point.changes               = 0;
+          point.refrozen              = false;
           // A status frozen by the geometric loop stays for the step.
           point.was_frozen = point.geometric_freeze;
           if (!point.geometric_freeze)
@@ -1629,15 +1633,36 @@ namespace Signorini
 
     template <int dim>
     unsigned int
-    ContactProblem<dim>::release_frozen()
+    ContactProblem<dim>::release_frozen(unsigned int &refrozen)
     {
-      unsigned int n = 0;
+      unsigned int n = 0, again = 0;
       for (auto &point : points)
         if (point.freeze_contact && !point.geometric_freeze)
           {
-            ++n;
-            clear_freeze(point);
+            // The first contradiction of a frozen point whose friction is
+            // active: frozen once more, in the stick or slip status the
+            // plain law asks for (released, it would enter its stick/slip
+            // or reversal cycle again). Otherwise released.
+            if (!point.refrozen && point.plain_violated &&
+                point.plain_status != PointStatus::free &&
+                point.friction_active)
+              {
+                ++again;
+                point.refrozen = true;
+                point.freeze_stick =
+                  point.plain_status == PointStatus::stick;
+                point.frozen_slip_direction =
+                  point.plain_status == PointStatus::slip ?
+                    point.plain_direction :
+                    Tensor<1, dim>();
+              }
+            else
+              {
+                ++n;
+                clear_freeze(point);
+              }
           }
+      refrozen = Utilities::MPI::sum(again, comm);
       return Utilities::MPI::sum(n, comm);
     }
 

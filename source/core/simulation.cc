@@ -1002,13 +1002,22 @@ namespace Signorini
           break;
         if (release)
           {
-            const unsigned int n = contact->release_frozen();
+            unsigned int       refrozen = 0;
+            const unsigned int n        = contact->release_frozen(refrozen);
             points_released += n;
+            points_frozen += refrozen;
             if (show_contact)
-              pcout << "    released " << n
-                    << " frozen point(s) that the contact law contradicts"
-                    << std::endl;
-            continue; // re-evaluate the same iterate with the plain law
+              {
+                pcout << "    frozen point(s) that the contact law "
+                         "contradicts: "
+                      << n << " released";
+                if (refrozen > 0)
+                  pcout << ", " << refrozen
+                        << " frozen again in the friction status the law "
+                           "asks for";
+                pcout << std::endl;
+              }
+            continue; // re-evaluate the same iterate
           }
 
         assemble(true);

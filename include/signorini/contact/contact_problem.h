@@ -208,12 +208,16 @@ namespace Signorini
        * disagrees at the converged iterate are counted (n_violated) and
        * must be released by the caller. start_newton_solve() clears the
        * history; release_frozen() lets every frozen point follow the plain
-       * law again (a point is frozen at most once per Newton solve).
+       * law again (a point is frozen by a cycle at most once per Newton
+       * solve), except that a point with active friction contradicted for
+       * the first time is frozen again in the stick or slip status the
+       * plain law asks for (counted in @p refrozen). Returns the number of
+       * released points.
        */
       void
       start_newton_solve();
       unsigned int
-      release_frozen();
+      release_frozen(unsigned int &refrozen);
 
       /**
        * Anti-cycling across pairings (formulation.md 7.3 and 8). A point
@@ -400,6 +404,12 @@ namespace Signorini
         PointStatus    geo_status_2 = PointStatus::free;
         Tensor<1, dim> geo_direction_1, geo_direction_2;
         bool           geometric_freeze = false;
+        // What the plain law said at the last evaluation of a frozen point,
+        // and whether the point was frozen a second time in this solve.
+        PointStatus    plain_status = PointStatus::free;
+        Tensor<1, dim> plain_direction;
+        bool           plain_violated = false;
+        bool           refrozen       = false;
         // Master faces of the last two pairings of the step (-1: none yet),
         // and the face a pairing 2-cycle pinned the point to.
         int geo_face_1 = -1, geo_face_2 = -1, pinned_face = -1;
