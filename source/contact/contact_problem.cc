@@ -1390,25 +1390,12 @@ namespace Signorini
                   // direction if it went through stick or reversed.
                   point.was_frozen = true;
                   ++stats.n_newly_frozen;
-                  if (status == PointStatus::free ||
-                      point.status == PointStatus::free)
-                    point.freeze_contact = true;
-                  else if (fric && status == PointStatus::slip &&
-                           point.status == PointStatus::slip)
-                    {
-                      // Reversed and back: friction in either direction
-                      // drives the slip the other way; only stick can be
-                      // consistent.
-                      point.freeze_contact = true;
-                      point.freeze_stick   = true;
-                    }
-                  else if (fric)
-                    {
-                      point.freeze_contact = true;
-                      point.frozen_slip_direction =
-                        status == PointStatus::slip ? r.slip_direction :
-                                                      point.slip_direction;
-                    }
+                  freeze_for_cycle(point,
+                                   status,
+                                   r.slip_direction,
+                                   point.status,
+                                   point.slip_direction,
+                                   fric);
                 }
             }
           if (new_iterate)
@@ -1610,17 +1597,12 @@ namespace Signorini
               ++n;
               point.geometric_freeze = true;
               point.was_frozen       = true;
-              point.freeze_contact   = true;
-              const PointStatus other = point.geo_status_1;
-              if (status == PointStatus::free || other == PointStatus::free)
-                ; // contact/free: kept in contact
-              else if (status == PointStatus::slip &&
-                       other == PointStatus::slip)
-                point.freeze_stick = true; // reversed and back
-              else if (status == PointStatus::slip)
-                point.frozen_slip_direction = dir;
-              else if (other == PointStatus::slip)
-                point.frozen_slip_direction = point.geo_direction_1;
+              freeze_for_cycle(point,
+                               status,
+                               dir,
+                               point.geo_status_1,
+                               point.geo_direction_1,
+                               true);
             }
           point.geo_status_2    = point.geo_status_1;
           point.geo_direction_2 = point.geo_direction_1;

@@ -441,6 +441,38 @@ namespace Signorini
         point.freeze_stick          = false;
       }
 
+      /**
+       * Freezes @p point after a cycle between @p status (slip direction
+       * @p direction) and @p other (@p other_direction): in contact if the
+       * cycle went through 'free'; with friction, sticking if it reversed
+       * its slip and came back (neither direction is consistent), else
+       * slipping in the direction of its slip status. False if nothing is
+       * frozen (a frictionless cycle that never went through 'free').
+       */
+      static bool
+      freeze_for_cycle(ContactPoint &        point,
+                       const PointStatus     status,
+                       const Tensor<1, dim> &direction,
+                       const PointStatus     other,
+                       const Tensor<1, dim> &other_direction,
+                       const bool            friction)
+      {
+        if (status == PointStatus::free || other == PointStatus::free)
+          {
+            point.freeze_contact = true;
+            return true;
+          }
+        if (!friction)
+          return false;
+        point.freeze_contact = true;
+        if (status == PointStatus::slip && other == PointStatus::slip)
+          point.freeze_stick = true;
+        else
+          point.frozen_slip_direction =
+            status == PointStatus::slip ? direction : other_direction;
+        return true;
+      }
+
       /** A contact point of slave face @p f at @p xi with rule weight
        * @p w on the unit face (shape values, position, weight, normal). */
       ContactPoint
