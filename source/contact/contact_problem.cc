@@ -109,6 +109,12 @@ namespace Signorini
       for (unsigned int p = 0; p < contact.pairs.size(); ++p)
         {
           const auto &pair = contact.pairs[p];
+          // Normal status per multiplier node: integration-point rules,
+          // frictionless, meshed master (the others have one law per node).
+          node_status_pair.push_back(contact.node_status &&
+                                     contact.rule != IntegrationRule::nodal &&
+                                     pair.friction == 0 &&
+                                     pair.master == MasterType::body);
           if (pair.master == MasterType::body)
             {
               obstacles.emplace_back();
@@ -189,7 +195,43 @@ namespace Signorini
     }
 
 
-    template <int dim>
+        template <int dim>
+    std::vector<double>
+    ContactProblem<dim>::dual_basis(const SlaveFace &face) const
+    {
+      // Face mass matrix M_lm = integral psi_l psi_m (with the weights of
+      // the contact points: reference Jacobian, 2 pi r if axisymmetric),
+      // D_l = sum_m M_lm; psi~ = D M^-1 psi is biorthogonal to psi.
+      const unsigned int    n = face.node_local.size();
+      const QGauss<dim - 1> gauss(parameters.fe_degree + 2);
+      FullMatrix<double>    M(n, n);
+      std::vector<double>   N;
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        {
+          face_shape_values<dim>(face.X.size(), gauss.point(q), N);
+          const auto g = face_geometry<dim>(face.X, gauss.point(q));
+          const double w =
+            gauss.weight(q) * g.jacobian *
+            (parameters.axisymmetric ? 2 * numbers::PI * g.x[0] : 1.);
+          for (unsigned int k = 0; k < N.size(); ++k)
+            for (unsigned int kk = 0; kk < N.size(); ++kk)
+              M(face.k_node[k], face.k_node[kk]) += w * N[k] * N[kk];
+        }
+      std::vector<double> D(n, 0.);
+      for (unsigned int l = 0; l < n; ++l)
+        for (unsigned int m = 0; m < n; ++m)
+          D[l] += M(l, m);
+      FullMatrix<double> M_inverse(n, n);
+      M_inverse.invert(M);
+      std::vector<double> dual(n * n);
+      for (unsigned int l = 0; l < n; ++l)
+        for (unsigned int m = 0; m < n; ++m)
+          dual[l * n + m] = D[l] * M_inverse(l, m);
+      return dual;
+    }
+
+
+template <int dim>
     typename ContactProblem<dim>::ContactPoint
     ContactProblem<dim>::make_point(const unsigned int    f,
                                     const unsigned int    q,
@@ -206,6 +248,7 @@ namespace Signorini
       point.psi.resize(face.node_local.size());
       for (unsigned int k = 0; k < face.X.size(); ++k)
         point.psi[face.k_node[k]] = N[k];
+      point.psi_lambda = point.psi; // the dual basis is set by pair()
       const auto geometry = face_geometry<dim>(face.X, xi);
       point.x_ref         = geometry.x;
       // Axisymmetric: the contact ring of radius r = x carries 2 pi r. A
@@ -252,6 +295,29 @@ namespace Signorini
         for (unsigned int c = 0; c < dim; ++c)
           x[c] += point.psi[l] * state[face.node_dofs[l * dim + c]];
       return x;
+    }
+
+
+    template <int dim>
+    double
+    ContactProblem<dim>::point_gap(
+      const ContactPoint &                 point,
+      const TrilinosWrappers::MPI::Vector &state) const
+    {
+      if (!point.paired)
+        return -std::numeric_limits<double>::max();
+      const Point<dim> x_e = slave_position(point, state);
+      Point<dim>       x_m = point.x_m_rigid;
+      if (point.master_face >= 0)
+        {
+          const auto &m = master_faces[point.master_face];
+          x_m           = Point<dim>();
+          for (unsigned int k = 0; k < m.X.size(); ++k)
+            for (unsigned int c = 0; c < dim; ++c)
+              x_m[c] += point.N_m[k] * (m.X[k][c] + state[m.dofs[k * dim + c]]);
+        }
+      return (x_e - x_m) * point.normal +
+             parameters.contact.pairs[slave_faces[point.face].pair].gap_offset;
     }
 
 
@@ -656,6 +722,19 @@ namespace Signorini
                                "mesh has (see 'Boundary ids' of the bodies).");
           }
 
+      // Node-status pairs: dual multipliers on the faces without a hanging
+      // node (whose multiplier interpolates its parents' and is no
+      // unknown of its own: the face keeps psi there).
+      for (auto &face : slave_faces)
+        {
+          bool hanging = false;
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            hanging |= !nodes.at(face.node_dofs[l * dim]).hanging.empty();
+          face.dual.clear();
+          if (node_status_pair[face.pair] && !hanging)
+            face.dual = dual_basis(face);
+        }
+
       // Contact points: the rule's points on every owned slave face (the
       // mortar rule cuts the faces of meshed pairs at every pairing).
       points.clear();
@@ -933,6 +1012,27 @@ namespace Signorini
           point.tangents = tangent_basis<dim>(point.normal);
         }
       n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
+
+      // Dual multipliers only on slave faces whose points are all paired:
+      // on a face that leaves the master partly, psi~ (negative lobes)
+      // would weigh the gap of the paired part alone.
+      std::vector<bool> covered(slave_faces.size(), true);
+      for (const auto &point : points)
+        covered[point.face] = covered[point.face] && point.paired;
+      for (auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          point.psi_lambda = point.psi;
+          if (face.dual.empty() || !covered[point.face])
+            continue;
+          const unsigned int n = point.psi.size();
+          for (unsigned int l = 0; l < n; ++l)
+            {
+              point.psi_lambda[l] = 0;
+              for (unsigned int m = 0; m < n; ++m)
+                point.psi_lambda[l] += face.dual[l * n + m] * point.psi[m];
+            }
+        }
     }
 
 
@@ -1157,23 +1257,7 @@ namespace Signorini
         {
           const auto &       face = slave_faces[point.face];
           const unsigned int p    = face.pair;
-          double             g    = -std::numeric_limits<double>::max();
-          if (point.paired)
-            {
-              const Point<dim> x_e = slave_position(point, state);
-              Point<dim> x_m = point.x_m_rigid;
-              if (point.master_face >= 0)
-                {
-                  const auto &m = master_faces[point.master_face];
-                  x_m           = Point<dim>();
-                  for (unsigned int k = 0; k < m.X.size(); ++k)
-                    for (unsigned int c = 0; c < dim; ++c)
-                      x_m[c] += point.N_m[k] *
-                                (m.X[k][c] + state[m.dofs[k * dim + c]]);
-                }
-              g = (x_e - x_m) * point.normal +
-                  parameters.contact.pairs[p].gap_offset;
-            }
+          const double       g    = point_gap(point, state);
           // delta: half the zero friction threshold of the law (see
           // law_parameters), so that lambda_aug = -/+ delta sets the normal
           // status strictly while the friction of a point closed this way
@@ -1207,6 +1291,88 @@ namespace Signorini
 
 
     template <int dim>
+    PointResponse<dim>
+    ContactProblem<dim>::node_status_response(const ContactPoint &   point,
+                                              const PointState<dim> &s) const
+    {
+      // The multiplier force -lambda n (the law's -lambda_aug n without
+      // the augmentation; lambda = 0 at free nodes); the
+      // point is labelled with the status of its nearest node.
+      PointResponse<dim> r{};
+      const auto &face = slave_faces[point.face];
+      const auto  nearest =
+        std::max_element(point.psi.begin(), point.psi.end()) - point.psi.begin();
+      r.in_contact = point.paired && node_active.at(face.lambda_dofs[nearest]);
+      r.status     = r.in_contact ? PointStatus::slip : PointStatus::free;
+      r.friction_active = false;
+      if (point.paired)
+        {
+          r.force          = -s.lambda * s.normal;
+          r.dforce_dlambda = -s.normal;
+        }
+      return r;
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::decide_node_statuses(
+      const TrilinosWrappers::MPI::Vector &state)
+    {
+      // Weighted gap G_l and weight D_l of every node (faces of all ranks).
+      // P_l: the paired share of the node (psi >= 0); a node without
+      // paired points has no gap and stays free.
+      auto G = writable_vector(owned_multipliers, extra, comm);
+      auto D = writable_vector(owned_multipliers, extra, comm);
+      auto P = writable_vector(owned_multipliers, extra, comm);
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (!node_status_pair[face.pair])
+            continue;
+          const double g = point.paired ? point_gap(point, state) : 0.;
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const double w = point.weight * point.psi_lambda[l];
+              add_entry(G, face.lambda_dofs[l], w * g);
+              add_entry(D, face.lambda_dofs[l], w);
+              if (point.paired)
+                add_entry(P, face.lambda_dofs[l], point.weight * point.psi[l]);
+            }
+        }
+      G.compress(VectorOperation::add);
+      D.compress(VectorOperation::add);
+      P.compress(VectorOperation::add);
+      TrilinosWrappers::MPI::Vector G_read(owned_multipliers, extra, comm);
+      TrilinosWrappers::MPI::Vector D_read(owned_multipliers, extra, comm);
+      TrilinosWrappers::MPI::Vector P_read(owned_multipliers, extra, comm);
+      G_read = G;
+      D_read = D;
+      P_read = P;
+      unsigned int changed = 0;
+      for (const auto &face : slave_faces)
+        if (node_status_pair[face.pair])
+          for (const auto dof : face.lambda_dofs)
+            {
+              const bool active = P_read[dof] > 0 &&
+                                  node_in_contact(state[dof],
+                                                  G_read[dof],
+                                                  D_read[dof],
+                                                  rho_n[face.pair]);
+              const auto it = node_active.find(dof);
+              if (it != node_active.end() && it->second == active)
+                continue;
+              // Counted once, by the owner (a node is on several faces).
+              if (owned_multipliers.is_element(dof) &&
+                  (it != node_active.end() || active))
+                ++changed;
+              node_active[dof] = active;
+            }
+      return changed;
+    }
+
+
+    template <int dim>
     ContactStatistics
     ContactProblem<dim>::assemble(const TrilinosWrappers::MPI::Vector &state,
                                   const TrilinosWrappers::MPI::Vector &start,
@@ -1218,6 +1384,11 @@ namespace Signorini
     {
       ContactStatistics stats;
       const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
+      // Normal status per node (decided before the point loop: a node's
+      // status needs the points of all its faces).
+      if (std::find(node_status_pair.begin(), node_status_pair.end(), true) !=
+          node_status_pair.end())
+        stats.n_changed += decide_node_statuses(state);
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
       FullMatrix<double>                   K, K_group;
@@ -1227,6 +1398,7 @@ namespace Signorini
       // Per-point work arrays, sized per point but allocated once.
       std::vector<double>       N_e, Nd;
       std::vector<unsigned int> comp;
+      std::vector<NodeStatusRow<dim>> node_rows;
       const auto                           flush = [&]() {
         if (group_dofs.empty())
           return;
@@ -1251,6 +1423,8 @@ namespace Signorini
           const unsigned int n_e = face.u_local.size();
           const unsigned int n_l = face.node_local.size();
           const std::vector<double> &psi = point.psi;
+          // Multiplier basis: psi, or the dual psi~ (node-status pairs).
+          const std::vector<double> &psi_c = point.psi_lambda;
           N_e.resize(n_e);
           Point<dim>                 x_e = point.x_ref;
           Tensor<1, dim>             du_e;
@@ -1263,10 +1437,12 @@ namespace Signorini
               du_e[c] += N_e[a] * (state[cell_dofs[i]] - start[cell_dofs[i]]);
             }
           PointState<dim> s;
-          s.lambda = 0;
+          s.lambda            = 0;
+          double lambda_shown = 0; // with psi (output)
           for (unsigned int l = 0; l < n_l; ++l)
             {
-              s.lambda += psi[l] * state[face.lambda_dofs[l]];
+              s.lambda += psi_c[l] * state[face.lambda_dofs[l]];
+              lambda_shown += psi[l] * state[face.lambda_dofs[l]];
               if (fric)
                 for (unsigned int k = 0; k < dim - 1; ++k)
                   s.Lambda[k] +=
@@ -1304,7 +1480,9 @@ namespace Signorini
           s.freeze_contact        = point.freeze_contact;
           s.frozen_slip_direction = point.frozen_slip_direction;
           s.freeze_stick          = point.freeze_stick;
-          const auto r = evaluate_contact_law(s, law);
+          const bool by_node      = node_status_pair[p];
+          const auto r =
+            by_node ? node_status_response(point, s) : evaluate_contact_law(s, law);
 
           // Statistics and the values for output.
           ++stats.n_points;
@@ -1333,14 +1511,16 @@ namespace Signorini
           const bool reversed = status == PointStatus::slip &&
                                 point.status == PointStatus::slip &&
                                 r.slip_direction * point.slip_direction < 0;
-          const bool changed = (status != point.status) ||
-                               (r.friction_active != point.friction_active) ||
-                               reversed;
+          // (Node-status points: the node changes are counted instead.)
+          const bool changed = !by_node &&
+                               ((status != point.status) ||
+                                (r.friction_active != point.friction_active) ||
+                                reversed);
           stats.n_reversed += reversed;
           stats.n_changed += changed;
 
           // Anti-cycling (formulation.md 8), see start_newton_solve().
-          const bool frozen = point.freeze_contact;
+          const bool frozen = point.freeze_contact && !by_node;
           if (frozen)
             {
               // What the plain law says at this iterate.
@@ -1366,7 +1546,7 @@ namespace Signorini
               else
                 stats.n_violated += violated;
             }
-          if (new_iterate && !frozen)
+          if (new_iterate && !frozen && !by_node)
             {
               // Back to the status of two iterates before (a 2-cycle), or
               // changed more than 2 N times (longer cycles).
@@ -1407,7 +1587,7 @@ namespace Signorini
           point.friction_active = r.friction_active;
           point.slip_direction  = r.slip_direction;
           point.gap    = s.gap;
-          point.lambda = s.lambda;
+          point.lambda = lambda_shown;
           point.Lambda = s.Lambda;
           point.force  = r.force;
           for (unsigned int k = 0; k < dim - 1; ++k)
@@ -1441,9 +1621,23 @@ namespace Signorini
           F.reinit(n);
           for (unsigned int a = 0; a < n_e + n_m; ++a)
             F[a] = -w * Nd[a] * r.force[comp[a]];
+          // The Signorini row of each node: the point's law, or the
+          // node's status (node_status_row).
+          std::vector<NodeStatusRow<dim>> &rows = node_rows;
+          rows.resize(n_l);
+          for (unsigned int l = 0; l < n_l; ++l)
+            rows[l] =
+              by_node ?
+                node_status_row(node_active.at(face.lambda_dofs[l]) &&
+                                  point.paired,
+                                point.paired ? s.gap : 0.,
+                                state[face.lambda_dofs[l]],
+                                s.normal,
+                                rho_n[p]) :
+                NodeStatusRow<dim>{r.r_c, r.drc_dd, 0.};
           for (unsigned int l = 0; l < n_l; ++l)
             {
-              F[o_c + l] = -sc * w * psi[l] * r.r_c;
+              F[o_c + l] = -sc * w * psi_c[l] * rows[l].r_c;
               for (unsigned int k = 0; k < (fric ? dim - 1 : 0); ++k)
                 F[o_f + l * (dim - 1) + k] = -sf * w * psi[l] * r.r_f[k];
             }
@@ -1461,9 +1655,9 @@ namespace Signorini
                   for (unsigned int l = 0; l < n_l; ++l)
                     {
                       K(a, o_c + l) =
-                        w * Nd[a] * psi[l] * r.dforce_dlambda[comp[a]];
-                      K(o_c + l, a) = sc * w * psi[l] * Nd[a] *
-                                      r.drc_dd[comp[a]];
+                        w * Nd[a] * psi_c[l] * r.dforce_dlambda[comp[a]];
+                      K(o_c + l, a) = sc * w * psi_c[l] * Nd[a] *
+                                      rows[l].drc_dd[comp[a]];
                       for (unsigned int k = 0; k < (fric ? dim - 1 : 0); ++k)
                         {
                           K(a, o_f + l * (dim - 1) + k) =
@@ -1477,8 +1671,11 @@ namespace Signorini
               for (unsigned int l = 0; l < n_l; ++l)
                 for (unsigned int m = 0; m < n_l; ++m)
                   {
-                    K(o_c + l, o_c + m) = sc * w * psi[l] * psi[m] *
-                                          r.drc_dlambda;
+                    K(o_c + l, o_c + m) =
+                      by_node ? (l == m ? sc * w * psi_c[l] *
+                                            rows[l].drc_dlambda_own :
+                                          0.) :
+                                sc * w * psi[l] * psi[m] * r.drc_dlambda;
                     for (unsigned int k = 0; k < (fric ? dim - 1 : 0); ++k)
                       {
                         K(o_f + l * (dim - 1) + k, o_c + m) =

@@ -828,6 +828,18 @@ namespace Signorini
                       "(g > 0), or all closed (holds bodies that only "
                       "contact supports; open points are released by "
                       "Newton).");
+    prm.declare_entry("Normal status",
+                      "node",
+                      Patterns::Selection("point|node"),
+                      "Where the contact/free status is decided with the "
+                      "integration-point rules (gauss, simpson, newton-cotes, "
+                      "mortar) on frictionless pairs with a meshed master: "
+                      "per contact point (formulation.md 3.1), or per "
+                      "multiplier node on the weighted gap (active nodes "
+                      "close their weighted gap, free nodes carry lambda = "
+                      "0: the converged solution does not depend on the "
+                      "'Normal coefficient'). The nodal rule, frictional "
+                      "pairs and rigid obstacles always use points.");
     prm.declare_entry("Friction threshold",
                       "newton",
                       Patterns::Selection("newton|frozen"),
@@ -910,6 +922,7 @@ namespace Signorini
     initial_status = i == "open"        ? InitialStatus::open :
                      i == "penetrating" ? InitialStatus::penetrating :
                                           InitialStatus::closed;
+    node_status              = prm.get("Normal status") == "node";
     frozen_threshold         = prm.get("Friction threshold") == "frozen";
     threshold_coupling       = prm.get_bool("Threshold coupling");
     penalty                  = prm.get_bool("Penalty");

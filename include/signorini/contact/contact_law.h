@@ -318,6 +318,55 @@ namespace Signorini
     evaluate_contact_law(const PointState<dim> &state,
                          const LawParameters   &parameters);
 
+
+    /**
+     * Normal status decided per multiplier node (frictionless pairs on an
+     * integration-point rule, `Contact/Normal status = node`): node l is in
+     * contact iff lambda_l - rho_n G_l / D_l < 0, with the weighted gap
+     * G_l = sum_k w_k psi_l g_k and D_l = sum_k w_k psi_l over the paired
+     * points of the node's faces. Active nodes carry the row G_l = 0, free
+     * ones D_l lambda_l = 0, so the converged solution does not depend on
+     * rho_n (formulation.md 8), as with the nodal rule, of which this is the
+     * weighted (mortar) form.
+     */
+    inline bool
+    node_in_contact(const double lambda_l,
+                    const double weighted_gap,
+                    const double weight,
+                    const double rho_n)
+    {
+      return weight > 0 && lambda_l - rho_n * weighted_gap / weight < 0;
+    }
+
+    /**
+     * The response of one point of a node-status pair: the multiplier force
+     * -lambda n (PointResponse::force) on the slave (all statuses: lambda is 0 at free nodes), and
+     * per node l of the point's face the Signorini row density, in the units
+     * of PointResponse (row scaled by rho_n by the assembly): an active node
+     * r_c = -g (d/dd = -n), a free node r_c = -lambda_l / rho_n with the
+     * node's own multiplier (lumped: d/dlambda_l = -1 / rho_n).
+     */
+    template <int dim>
+    struct NodeStatusRow
+    {
+      double         r_c;
+      Tensor<1, dim> drc_dd;
+      double         drc_dlambda_own;
+    };
+
+    template <int dim>
+    inline NodeStatusRow<dim>
+    node_status_row(const bool            active,
+                    const double          gap,
+                    const double          lambda_l,
+                    const Tensor<1, dim> &n,
+                    const double          rho_n)
+    {
+      if (active)
+        return {-gap, -n, 0.};
+      return {-lambda_l / rho_n, Tensor<1, dim>(), -1. / rho_n};
+    }
+
   } // namespace Contact
 } // namespace Signorini
 

@@ -355,6 +355,11 @@ namespace Signorini
         std::vector<Point<dim>>              X;
         std::vector<unsigned int>            k_node, u_node, u_comp;
         std::vector<types::global_dof_index> node_dofs;
+        // Node-status pairs: the dual (biorthogonal) multiplier basis,
+        // psi~_l = sum_m dual[l * n + m] psi_m with n = node_local.size(),
+        // so that the integral of psi~_l psi_m over the face is
+        // delta_lm D_l; empty: the multipliers use psi.
+        std::vector<double> dual;
       };
 
       struct MasterFace
@@ -374,6 +379,7 @@ namespace Signorini
         // weight (rule weight x reference Jacobian) and outward normal.
         Point<dim - 1>      xi;
         std::vector<double> psi;
+        std::vector<double> psi_lambda; // multiplier basis: psi or psi~
         Point<dim>          x_ref;
         double              weight = 0;
         Tensor<1, dim>      slave_normal;
@@ -506,6 +512,29 @@ namespace Signorini
       slave_position(const ContactPoint &                 point,
                      const TrilinosWrappers::MPI::Vector &state) const;
 
+      /** g of formulation.md 2 at @p point (-max if unpaired). */
+      double
+      point_gap(const ContactPoint &                 point,
+                const TrilinosWrappers::MPI::Vector &state) const;
+
+      /**
+       * Normal status per multiplier node (`Normal status = node`): the
+       * weighted gaps of the node-status pairs, summed over all ranks,
+       * decide node_active; returns the number of owned nodes whose status
+       * changed.
+       */
+      unsigned int
+      decide_node_statuses(const TrilinosWrappers::MPI::Vector &state);
+
+      /** The dual multiplier basis of @p face (SlaveFace::dual). */
+      std::vector<double>
+      dual_basis(const SlaveFace &face) const;
+
+      /** The law response of a point of a node-status pair. */
+      PointResponse<dim>
+      node_status_response(const ContactPoint &   point,
+                           const PointState<dim> &s) const;
+
       const Parameters &     parameters;
       const DoFHandler<dim> &dof_handler;
       const FESystem<dim> &  fe;
@@ -522,6 +551,10 @@ namespace Signorini
       std::vector<std::unique_ptr<RigidObstacle<dim>>> obstacles; // per pair
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
       std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
+      std::vector<bool>   node_status_pair; // per pair
+      // Normal status of the multiplier nodes of node-status pairs (key:
+      // lambda DoF; the nodes of this rank's slave faces).
+      std::map<types::global_dof_index, bool> node_active;
       unsigned int        iterates_recorded = 0; // in this Newton solve
       unsigned int        n_newly_pinned = 0, pairings_in_step = 0;
 

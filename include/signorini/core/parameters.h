@@ -308,6 +308,7 @@ namespace Signorini
     unsigned int                       segment_order; // 0: automatic
     NormalChoice                       normal;
     InitialStatus                      initial_status;
+    bool                               node_status; // 'Normal status = node'
     bool                               frozen_threshold;
     bool                               threshold_coupling;
     bool                               penalty;
