@@ -115,6 +115,7 @@ namespace Signorini
                                      contact.rule != IntegrationRule::nodal &&
                                      pair.friction == 0 &&
                                      pair.master == MasterType::body);
+          any_node_status = any_node_status || node_status_pair.back();
           if (pair.master == MasterType::body)
             {
               obstacles.emplace_back();
@@ -195,7 +196,7 @@ namespace Signorini
     }
 
 
-        template <int dim>
+    template <int dim>
     std::vector<double>
     ContactProblem<dim>::dual_basis(const SlaveFace &face) const
     {
@@ -231,7 +232,7 @@ namespace Signorini
     }
 
 
-template <int dim>
+    template <int dim>
     typename ContactProblem<dim>::ContactPoint
     ContactProblem<dim>::make_point(const unsigned int    f,
                                     const unsigned int    q,
@@ -1296,8 +1297,8 @@ template <int dim>
                                               const PointState<dim> &s) const
     {
       // The multiplier force -lambda n (the law's -lambda_aug n without
-      // the augmentation; lambda = 0 at free nodes); the
-      // point is labelled with the status of its nearest node.
+      // the augmentation; lambda = 0 at free nodes); the point is labelled
+      // with the status of its nearest node (statistics and output).
       PointResponse<dim> r{};
       const auto &face = slave_faces[point.face];
       const auto  nearest =
@@ -1386,8 +1387,7 @@ template <int dim>
       const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
       // Normal status per node (decided before the point loop: a node's
       // status needs the points of all its faces).
-      if (std::find(node_status_pair.begin(), node_status_pair.end(), true) !=
-          node_status_pair.end())
+      if (any_node_status)
         stats.n_changed += decide_node_statuses(state);
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
@@ -1623,7 +1623,7 @@ template <int dim>
             F[a] = -w * Nd[a] * r.force[comp[a]];
           // The Signorini row of each node: the point's law, or the
           // node's status (node_status_row).
-          std::vector<NodeStatusRow<dim>> &rows = node_rows;
+          auto &rows = node_rows;
           rows.resize(n_l);
           for (unsigned int l = 0; l < n_l; ++l)
             rows[l] =

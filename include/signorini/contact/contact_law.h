@@ -323,11 +323,12 @@ namespace Signorini
      * Normal status decided per multiplier node (frictionless pairs on an
      * integration-point rule, `Contact/Normal status = node`): node l is in
      * contact iff lambda_l - rho_n G_l / D_l < 0, with the weighted gap
-     * G_l = sum_k w_k psi_l g_k and D_l = sum_k w_k psi_l over the paired
-     * points of the node's faces. Active nodes carry the row G_l = 0, free
-     * ones D_l lambda_l = 0, so the converged solution does not depend on
-     * rho_n (formulation.md 8), as with the nodal rule, of which this is the
-     * weighted (mortar) form.
+     * G_l = sum_k w_k psi_l g_k over the paired points of the node's faces
+     * and D_l = sum_k w_k psi_l over all of them (psi: the multiplier
+     * basis, dual where ContactProblem uses it). Active nodes carry the
+     * row G_l = 0, free ones D_l lambda_l = 0, so the converged solution
+     * does not depend on rho_n (formulation.md 8), as with the nodal rule,
+     * of which this is the weighted (mortar) form.
      */
     inline bool
     node_in_contact(const double lambda_l,
@@ -339,12 +340,13 @@ namespace Signorini
     }
 
     /**
-     * The response of one point of a node-status pair: the multiplier force
-     * -lambda n (PointResponse::force) on the slave (all statuses: lambda is 0 at free nodes), and
-     * per node l of the point's face the Signorini row density, in the units
-     * of PointResponse (row scaled by rho_n by the assembly): an active node
+     * The Signorini row density that one point of a node-status pair gives
+     * to the row of node l of its face, in the units of PointResponse::r_c
+     * (the assembly scales lambda rows by rho_n): an active node
      * r_c = -g (d/dd = -n), a free node r_c = -lambda_l / rho_n with the
-     * node's own multiplier (lumped: d/dlambda_l = -1 / rho_n).
+     * node's own multiplier (lumped: d/dlambda_l = -1 / rho_n). The point's
+     * displacement rows carry the multiplier force -lambda n at every
+     * status (lambda is 0 at free nodes).
      */
     template <int dim>
     struct NodeStatusRow

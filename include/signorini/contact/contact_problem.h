@@ -552,6 +552,7 @@ namespace Signorini
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
       std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
       std::vector<bool>   node_status_pair; // per pair
+      bool                any_node_status = false;
       // Normal status of the multiplier nodes of node-status pairs (key:
       // lambda DoF; the nodes of this rank's slave faces).
       std::map<types::global_dof_index, bool> node_active;
