@@ -365,7 +365,7 @@ namespace Signorini
       const unsigned int    n_cell_dofs = fe.n_dofs_per_cell();
       std::vector<types::global_dof_index> cell_dofs(n_cell_dofs);
       std::vector<double> h_sum(n_pairs, 0.), h_count(n_pairs, 0.),
-        e_max(n_pairs, 0.);
+        e_max(n_pairs, 0.), e_master(n_pairs, 0.);
       slave_faces.clear();
       master_faces.clear();
       own_master_cells.clear();
@@ -464,6 +464,9 @@ namespace Signorini
                   {
                     master_ints.push_back(m->second);
                     own_master_cells.push_back(cell);
+                    e_master[m->second] = std::max(
+                      e_master[m->second],
+                      materials.at(cell->material_id()).youngs_modulus());
                     // Nodes in the face's FE_Q<dim-1> order (see
                     // project_onto_face), dim DoFs each.
                     std::vector<types::global_dof_index> node_dofs(
@@ -508,7 +511,10 @@ namespace Signorini
               }
 
       // Coefficients (formulation.md 8, "magic coefficients"): rho_n = c_n
-      // E / h with h the mean slave face size; rho_t = c_t rho_n / (mu
+      // E / h with h the mean slave face size and E the softer body's
+      // Young's modulus (slave, or a meshed master that is softer: a gap
+      // error is resisted by the softer body, and rho_n from a stiff slave
+      // on a soft master weighs the gap 1/contrast too much); rho_t = c_t rho_n / (mu
       // p_ref) makes the tangential stiffness mu p_ref rho_t of a sticking
       // point comparable to rho_n (see update_coefficients); before any
       // pressure is known p_ref = 1e-3 E.
@@ -522,6 +528,7 @@ namespace Signorini
           const double hs = Utilities::MPI::sum(h_sum[p], comm);
           const double hc = Utilities::MPI::sum(h_count[p], comm);
           const double E  = Utilities::MPI::max(e_max[p], comm);
+          const double Em = Utilities::MPI::max(e_master[p], comm);
           if (hc == 0)
             throw InputError(pair_name(p) +
                              ", parameter 'Slave boundary id': no boundary "
@@ -529,7 +536,8 @@ namespace Signorini
                              "mesh has (see 'Boundary ids' of the bodies).");
           face_size[p] = hs / hc;
           youngs[p]    = E;
-          rho_n[p]     = pairs[p].rho_n_factor * E / face_size[p];
+          rho_n[p]     = pairs[p].rho_n_factor * (Em > 0 ? std::min(E, Em) : E) /
+                     face_size[p];
           p_ref[p]     = 1e-3 * E;
           rho_t[p]     = pairs[p].friction > 0 ?
                            pairs[p].rho_t_factor * rho_n[p] /

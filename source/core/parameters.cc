@@ -734,7 +734,9 @@ namespace Signorini
                       Patterns::Double(1e-300),
                       "Dimensionless factor c_n of the normal augmentation "
                       "rho_n = c_n E / h, with E the largest Young's modulus "
-                      "of the slave cells and h the mean slave face size. It "
+                      "of the slave cells (or of the master cells when the "
+                      "master body is softer) and h the mean slave face "
+                      "size. It "
                       "changes the convergence path, not the solution. With "
                       "'Penalty = true' it scales the penalty stiffness.");
     prm.declare_entry("Tangential coefficient",
