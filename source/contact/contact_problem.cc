@@ -116,6 +116,12 @@ namespace Signorini
                                      pair.friction == 0 &&
                                      pair.master == MasterType::body);
           any_node_status = any_node_status || node_status_pair.back();
+          // Newton on the geometry: rigid obstacles with their own normal.
+          newton_geometry_pair.push_back(
+            contact.newton_geometry &&
+            (pair.friction == 0 || contact.newton_geometry_frictional) &&
+            pair.master != MasterType::body &&
+            contact.normal == NormalChoice::master);
           if (pair.master == MasterType::body)
             {
               obstacles.emplace_back();
@@ -1018,7 +1024,11 @@ namespace Signorini
               point.normal += point.slave_normal;
               point.normal /= point.normal.norm();
             }
-          point.tangents = tangent_basis<dim>(point.normal);
+          // The 3D crossing axis of T is kept until the next pairing, so
+          // that T stays smooth in n when n follows the iterate.
+          point.tangent_axis = tangent_axis<dim>(point.normal);
+          point.tangents =
+            tangent_basis<dim>(point.normal, point.tangent_axis);
         }
       n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
 
@@ -1456,6 +1466,21 @@ namespace Signorini
                   s.Lambda[k] +=
                     psi[l] * state[face.friction_dofs[l * (dim - 1) + k]];
             }
+          // Newton on the geometry of a rigid obstacle: projection, normal
+          // and tangents of the current iterate, and dn/du for the
+          // Jacobian (added after the law below).
+          const bool geometry_newton =
+            newton_geometry_pair[p] && point.paired;
+          Tensor<2, dim> dn_du;
+          if (geometry_newton)
+            {
+              const auto proj = obstacles[p]->project(x_e);
+              point.normal    = proj.normal;
+              point.x_m_rigid = proj.x_m;
+              point.tangents =
+                tangent_basis<dim>(point.normal, point.tangent_axis);
+              dn_du = proj.dnormal;
+            }
           s.normal          = point.normal;
           s.tangents        = point.tangents;
           s.lambda_f_frozen = point.lambda_frozen;
@@ -1489,8 +1514,11 @@ namespace Signorini
           s.frozen_slip_direction = point.frozen_slip_direction;
           s.freeze_stick          = point.freeze_stick;
           const bool by_node      = node_status_pair[p];
-          const auto r =
+          auto r =
             by_node ? node_status_response(point, s) : evaluate_contact_law(s, law);
+          if (geometry_newton)
+            add_geometric_derivatives(
+              r, s, du_e - du_m, dn_du, point.tangent_axis);
 
           // Statistics and the values for output.
           ++stats.n_points;

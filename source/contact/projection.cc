@@ -402,6 +402,10 @@ namespace Signorini
       r.x_m    = center + radius * e;
       r.normal = -e;
       r.gap    = radius - dist;
+      if (dist > 0.)
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            r.dnormal[i][j] = -((i == j ? 1. : 0.) - e[i] * e[j]) / dist;
       return r;
     }
 
@@ -463,6 +467,16 @@ namespace Signorini
       r.x_m    = p + (radius - dist) * e;
       r.normal = -e;
       r.gap    = radius - dist;
+      if (dist > 0.)
+        {
+          // dn/dp = -(P_a - e e) / dist, P_a = I - a a (a = 0 in 2D).
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              r.dnormal[i][j] =
+                -((i == j ? 1. : 0.) - axis_direction[i] * axis_direction[j] -
+                  e[i] * e[j]) /
+                dist;
+        }
       return r;
     }
 

@@ -848,6 +848,19 @@ namespace Signorini
                       "lambda_f = current lambda (newton, formulation.md 3.3) "
                       "or lambda of the previous geometric iteration "
                       "(frozen).");
+    prm.declare_entry("Geometric linearisation",
+                      "auto",
+                      Patterns::Selection("auto|fixed point|newton"),
+                      "Rigid obstacles: the projection, normal and tangents "
+                      "frozen within each geometric iteration (fixed point, "
+                      "formulation.md 7) or updated at every Newton iterate "
+                      "with their derivatives in the Jacobian (newton: the "
+                      "curvature of a ball or cylinder no longer costs "
+                      "geometric iterations). auto: newton for frictionless "
+                      "pairs, fixed point for frictional ones (with friction "
+                      "the rotating normal makes the stick/slip search "
+                      "harder, doc/robustness.md). Meshed masters always "
+                      "use the fixed point.");
     prm.declare_entry("Threshold coupling",
                       "true",
                       Patterns::Bool(),
@@ -926,6 +939,9 @@ namespace Signorini
                                           InitialStatus::closed;
     node_status              = prm.get("Normal status") == "node";
     frozen_threshold         = prm.get("Friction threshold") == "frozen";
+    newton_geometry = prm.get("Geometric linearisation") != "fixed point";
+    newton_geometry_frictional =
+      prm.get("Geometric linearisation") == "newton";
     threshold_coupling       = prm.get_bool("Threshold coupling");
     penalty                  = prm.get_bool("Penalty");
     projection_tolerance     = prm.get_double("Projection tolerance");

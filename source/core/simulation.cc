@@ -666,15 +666,19 @@ namespace Signorini
         unsigned int                        its        = 0;
         // A pairing that will change is not worth the last quadratic
         // iterations: hand over at 'Tolerance between pairings' (not in
-        // the last allowed geometric iteration).
+        // the last allowed geometric iteration, nor when a new pairing
+        // cannot change the equations).
         const double handover =
-          g < c.max_geometric_iterations ?
+          g < c.max_geometric_iterations && !contact->pairing_is_exact() ?
             parameters.newton.tolerance_between_pairings :
             0.;
         const bool ok = newton(its, handover);
         iterations += its;
         if (!ok)
           return false;
+        // Rigid obstacles projected at every iterate: nothing to re-pair.
+        if (contact->pairing_is_exact())
+          return true;
         // Largest displacement change since the pairing against the step's
         // increment (code_aster's criterion, formulation.md 7.3).
         double change = 0, increment = 0;
@@ -1143,14 +1147,16 @@ namespace Signorini
         double &s = scale[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)];
         s         = std::max(s, std::abs(state[i]));
       }
-    // and never below a floor (1e-6 of the mesh diameter, 1e-6 of the
-    // largest Young's modulus, 1), so that a block that is zero up to
-    // round-off is not perturbed by round-off.
+    // and never below a floor (1e-6 of the mesh diameter, 1e-3 of the
+    // largest Young's modulus, a contact pressure level, and 1), so that a
+    // block that is zero up to round-off is not perturbed by round-off
+    // (with a floor of 1e-6 E, lambda = 0 after an open solve gave steps
+    // of 1e-12 E and central differences of round-off noise, 6e-5).
     double E_max = 0;
     for (const auto &[id, material] : materials)
       E_max = std::max(E_max, material.youngs_modulus());
     const double floor[3] = {1e-6 * model_size,
-                             1e-6 * E_max,
+                             1e-3 * E_max,
                              1.};
     for (unsigned int b = 0; b < 3; ++b)
       scale[b] = 1e-6 * std::max(Utilities::MPI::max(scale[b], mpi_communicator),
@@ -1194,6 +1200,10 @@ namespace Signorini
           unit[j] = 1;
         unit.compress(VectorOperation::insert);
         K.vmult(column, unit);
+        // The block's size from every column, also those at a kink: when
+        // the few smooth columns of a block are zero up to round-off,
+        // their noise is not an error.
+        block_size[b] = std::max(block_size[b], column.linfty_norm());
         const double h = scale[b];
         const unsigned int flips =
           evaluate(j, h, r_plus) + evaluate(j, -h, r_minus);
@@ -1205,7 +1215,6 @@ namespace Signorini
           }
         r_plus -= r_minus;
         r_plus *= -1. / (2 * h); // the finite-difference column
-        block_size[b] = std::max(block_size[b], column.linfty_norm());
         column -= r_plus;
         differences.emplace_back(b, column.linfty_norm());
       }

@@ -92,6 +92,23 @@ namespace Signorini
       }
 
       /**
+       * True if a new pairing cannot change the equations: every pair is a
+       * rigid obstacle projected at every Newton iterate, and no friction
+       * threshold is frozen at the pairing. The geometric loop then has
+       * nothing to hand over to.
+       */
+      bool
+      pairing_is_exact() const
+      {
+        for (unsigned int p = 0; p < newton_geometry_pair.size(); ++p)
+          if (!newton_geometry_pair[p] ||
+              (parameters.contact.frozen_threshold &&
+               parameters.contact.pairs[p].friction > 0))
+            return false;
+        return !newton_geometry_pair.empty();
+      }
+
+      /**
        * Finds the slave and master surfaces, numbers the multipliers and
        * computes the coefficients. Needs the displacement constraints
        * (hanging nodes and Dirichlet) of the locally relevant DoFs to decide
@@ -389,6 +406,7 @@ namespace Signorini
         std::vector<double> N_m;         // master shape values at xi
         Tensor<1, dim> normal;
         std::array<Tensor<1, dim>, dim - 1> tangents;
+        unsigned int   tangent_axis = 0; // 3D axis of T, fixed at pairing
         Point<dim>     x_m_rigid;
         Tensor<1, dim> rigid_increment;
         double         lambda_frozen = 0;
@@ -552,6 +570,8 @@ namespace Signorini
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
       std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
       std::vector<bool>   node_status_pair; // per pair
+      // 'Geometric linearisation = newton' on a rigid obstacle, per pair.
+      std::vector<bool> newton_geometry_pair;
       bool                any_node_status = false;
       // Normal status of the multiplier nodes of node-status pairs (key:
       // lambda DoF; the nodes of this rank's slave faces).

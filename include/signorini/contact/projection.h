@@ -184,6 +184,14 @@ namespace Signorini
        * g = (p - x^m) . n [m]; g > 0 iff p penetrates the obstacle.
        */
       double gap;
+
+      /**
+       * dn/dp: derivative of the normal with respect to the point (zero for
+       * a plane; -(I - e e)/|p - c| for a ball; with the projector
+       * orthogonal to the axis for a cylinder). Used by the Newton
+       * linearisation of the geometry ('Geometric linearisation = newton').
+       */
+      Tensor<2, dim> dnormal;
     };
 
 

@@ -310,6 +310,9 @@ namespace Signorini
     InitialStatus                      initial_status;
     bool                               node_status; // 'Normal status = node'
     bool                               frozen_threshold;
+    // 'Geometric linearisation' for rigid obstacles: Newton on every rigid
+    // pair (newton), on the frictionless ones (auto), on none (fixed point).
+    bool newton_geometry, newton_geometry_frictional;
     bool                               threshold_coupling;
     bool                               penalty;
     double                             projection_tolerance;
