@@ -384,19 +384,23 @@ namespace Signorini
     void
     add_geometric_derivatives(PointResponse<dim> &   r,
                               const PointState<dim> &s,
-                              const Tensor<1, dim> & increment,
+                              const Tensor<1, dim> & slip,
+                              const Tensor<2, dim> & dslip,
                               const Tensor<2, dim> & dn,
                               const unsigned int     axis)
     {
       const auto &n  = s.normal;
       const auto &T  = s.tangents;
       const auto  dT = tangent_basis_derivative(n, dn, axis);
-      // q_j = d (tau_j . increment) / dd at fixed increment.
+      // q_j = d (tau_j . slip) / dd minus the tau_j the law used.
       std::array<Tensor<1, dim>, dim - 1> q;
       for (unsigned int j = 0; j < dim - 1; ++j)
         for (unsigned int m = 0; m < dim; ++m)
-          for (unsigned int i = 0; i < dim; ++i)
-            q[j][m] += increment[i] * dT[j][i][m];
+          {
+            q[j][m] = -T[j][m];
+            for (unsigned int i = 0; i < dim; ++i)
+              q[j][m] += slip[i] * dT[j][i][m] + T[j][i] * dslip[i][m];
+          }
       Tensor<2, dim> G = (r.force * n) * dn;
       Tensor<1, dim> G_rc;
       std::array<Tensor<1, dim>, dim - 1> G_rf;
@@ -423,10 +427,12 @@ namespace Signorini
                                                const PointState<2> &,
                                                const Tensor<1, 2> &,
                                                const Tensor<2, 2> &,
+                                               const Tensor<2, 2> &,
                                                const unsigned int);
     template void add_geometric_derivatives<3>(PointResponse<3> &,
                                                const PointState<3> &,
                                                const Tensor<1, 3> &,
+                                               const Tensor<2, 3> &,
                                                const Tensor<2, 3> &,
                                                const unsigned int);
     template unsigned int tangent_axis<3>(const Tensor<1, 3> &);

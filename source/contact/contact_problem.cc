@@ -1471,7 +1471,8 @@ namespace Signorini
           // Jacobian (added after the law below).
           const bool geometry_newton =
             newton_geometry_pair[p] && point.paired;
-          Tensor<2, dim> dn_du;
+          Tensor<2, dim>       dn_du, dslip_du;
+          Tensor<1, dim>       surface_slip;
           if (geometry_newton)
             {
               const auto proj = obstacles[p]->project(x_e);
@@ -1479,7 +1480,14 @@ namespace Signorini
               point.x_m_rigid = proj.x_m;
               point.tangents =
                 tangent_basis<dim>(point.normal, point.tangent_axis);
-              dn_du = proj.dnormal;
+              dn_du    = proj.dnormal;
+              dslip_du = proj.dclosest;
+              // Slip on the obstacle's surface: the closest point now
+              // against that of the step-start position carried with the
+              // obstacle (a normal approach is no slip, whatever n does).
+              surface_slip =
+                proj.x_m -
+                obstacles[p]->project(x_e - du_e + point.rigid_increment).x_m;
             }
           s.normal          = point.normal;
           s.tangents        = point.tangents;
@@ -1507,7 +1515,7 @@ namespace Signorini
                     parameters.contact.pairs[p].gap_offset;
           else
             s.gap = -1e30; // no master in reach: free
-          s.slip = du_e - du_m;
+          s.slip = geometry_newton ? surface_slip : du_e - du_m;
           s.slip -= (s.slip * s.normal) * s.normal;
 
           s.freeze_contact        = point.freeze_contact;
@@ -1518,7 +1526,7 @@ namespace Signorini
             by_node ? node_status_response(point, s) : evaluate_contact_law(s, law);
           if (geometry_newton)
             add_geometric_derivatives(
-              r, s, du_e - du_m, dn_du, point.tangent_axis);
+              r, s, surface_slip, dslip_du, dn_du, point.tangent_axis);
 
           // Statistics and the values for output.
           ++stats.n_points;

@@ -375,6 +375,10 @@ namespace Signorini
       r.x_m    = p - height * outward_normal;
       r.normal = -outward_normal;
       r.gap    = -height;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          r.dclosest[i][j] =
+            (i == j ? 1. : 0.) - outward_normal[i] * outward_normal[j];
       return r;
     }
 
@@ -405,7 +409,10 @@ namespace Signorini
       if (dist > 0.)
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = 0; j < dim; ++j)
-            r.dnormal[i][j] = -((i == j ? 1. : 0.) - e[i] * e[j]) / dist;
+            {
+              r.dnormal[i][j]  = -((i == j ? 1. : 0.) - e[i] * e[j]) / dist;
+              r.dclosest[i][j] = -radius * r.dnormal[i][j];
+            }
       return r;
     }
 
@@ -470,12 +477,17 @@ namespace Signorini
       if (dist > 0.)
         {
           // dn/dp = -(P_a - e e) / dist, P_a = I - a a (a = 0 in 2D).
+          // dx^m/dp = I - e e + (R/dist - 1)(P_a - e e).
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
-              r.dnormal[i][j] =
-                -((i == j ? 1. : 0.) - axis_direction[i] * axis_direction[j] -
-                  e[i] * e[j]) /
-                dist;
+              {
+                const double pe = (i == j ? 1. : 0.) -
+                                  axis_direction[i] * axis_direction[j] -
+                                  e[i] * e[j];
+                r.dnormal[i][j]  = -pe / dist;
+                r.dclosest[i][j] = (i == j ? 1. : 0.) - e[i] * e[j] +
+                                   (radius / dist - 1.) * pe;
+              }
         }
       return r;
     }

@@ -351,15 +351,16 @@ namespace Signorini
      * frozen at @p s) the terms from n(d) and T(n(d)), for a normal with
      * derivative @p dn = dn/dd and tangents tangent_basis(n, @p axis).
      * The law depends on n and T through force = a n + sum_k b_k tau_k and
-     * through T v = T (Delta u^e - Delta u^m) (@p increment); the gap's
-     * derivative is n already (closest point). Exact except for points
-     * with a frozen slip direction (anti-cycling).
+     * through T v, with v = P @p slip and d slip/dd = @p dslip (the law
+     * assumed I); the gap's derivative is n already (closest point). Exact
+     * except for points with a frozen slip direction (anti-cycling).
      */
     template <int dim>
     void
     add_geometric_derivatives(PointResponse<dim> &   r,
                               const PointState<dim> &s,
-                              const Tensor<1, dim> & increment,
+                              const Tensor<1, dim> & slip,
+                              const Tensor<2, dim> & dslip,
                               const Tensor<2, dim> & dn,
                               const unsigned int     axis);
 

@@ -192,6 +192,13 @@ namespace Signorini
        * linearisation of the geometry ('Geometric linearisation = newton').
        */
       Tensor<2, dim> dnormal;
+
+      /**
+       * dx^m/dp: derivative of the closest point (I - n n for a plane;
+       * R (I - e e)/|p - c| for a ball; for a cylinder R/|P_a (p - a)| in
+       * the circumferential direction and 1 along the axis).
+       */
+      Tensor<2, dim> dclosest;
     };
 
 
