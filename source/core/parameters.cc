@@ -505,8 +505,9 @@ namespace Signorini
                       "1e-10",
                       Patterns::Double(0, 1),
                       "Converged when the residual norm is below this "
-                      "factor times the norm of the external force vector "
-                      "(or the first residual) [-].");
+                      "factor times the force level of the load step (the "
+                      "largest internal or external force norm of its "
+                      "iterates) [-].");
     prm.declare_entry("Absolute tolerance",
                       "1e-30",
                       Patterns::Double(0),

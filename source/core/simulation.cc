@@ -878,7 +878,7 @@ namespace Signorini
     const bool verbose = parameters.output.verbosity == Verbosity::verbose;
     const bool show_contact =
       contact->active() && parameters.output.verbosity != Verbosity::quiet;
-    double residual_0 = 0, residual_before = 0;
+    double residual_before = 0;
     bool   settled_before = false;
     for (iterations = 0; iterations <= parameters.newton.max_iterations;
          ++iterations)
@@ -898,18 +898,19 @@ namespace Signorini
         const double residual =
           std::sqrt(block[0] * block[0] + block[1] * block[1] +
                     block[2] * block[2]);
-        if (iterations == 0)
-          {
-            residual_0  = residual;
-            // The force level of the load step so far: in a later
-            // geometric iteration of a stress-free step (open contact,
-            // rigid motion) the first residual is round-off and must not
-            // become the scale.
-            force_scale = std::max({force_scale,
-                                    internal_force.l2_norm(),
-                                    external_force.l2_norm(),
-                                    residual_0});
-          }
+        // The force level of the load step so far: the largest internal
+        // and external force of its iterates. Not the residual: its
+        // multiplier rows (scaled by rho_n) hold rho_n times the initial
+        // gaps at a 'closed' start, and its displacement rows rho_n times
+        // the gap of a point that just closed, so a level taken from it
+        // (and every relative tolerance) depended on the Normal
+        // coefficient (c_n = 1e6: a level 1e6 times the load). The
+        // maximum over the step: in a later geometric iteration of a
+        // stress-free step (open contact, rigid motion) the forces are
+        // round-off and must not become the scale.
+        force_scale = std::max({force_scale,
+                                internal_force.l2_norm(),
+                                external_force.l2_norm()});
         const double relative_tolerance =
           tolerance > 0 ? std::max(tolerance,
                                    parameters.newton.relative_tolerance) :
