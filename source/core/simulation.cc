@@ -2034,7 +2034,7 @@ namespace Signorini
             if (parameters.contact.pairs[p].friction > 0)
               pcout << " (stick " << s.n_stick << ", slip " << s.n_slip
                     << ")";
-            pcout << ", force on slave = (";
+            pcout << ", force on master = (";
             for (unsigned int d = 0; d < dim; ++d)
               pcout << (d ? ", " : "") << format(s.force[d], 4);
             pcout << "), max p = " << format(s.p_max, 4) << "\n";

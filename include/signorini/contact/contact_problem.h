@@ -281,7 +281,7 @@ namespace Signorini
       /** Per-pair results of the last evaluation, summed over ranks. */
       struct PairSummary
       {
-        Tensor<1, dim> force;      // total contact force on the slave [N]
+        Tensor<1, dim> force; // contact force the slave exerts on the master [N]
         double         p_max = 0;  // largest p = -lambda at a point [Pa]
         // Sums of w |f . n| and w |P f| over the points, each in its own
         // contact frame [N].
