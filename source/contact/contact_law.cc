@@ -423,18 +423,6 @@ namespace Signorini
     template std::array<Tensor<1, 2>, 1>
     tangent_basis<2>(const Tensor<1, 2> &);
     template unsigned int tangent_axis<2>(const Tensor<1, 2> &);
-    template void add_geometric_derivatives<2>(PointResponse<2> &,
-                                               const PointState<2> &,
-                                               const Tensor<1, 2> &,
-                                               const Tensor<2, 2> &,
-                                               const Tensor<2, 2> &,
-                                               const unsigned int);
-    template void add_geometric_derivatives<3>(PointResponse<3> &,
-                                               const PointState<3> &,
-                                               const Tensor<1, 3> &,
-                                               const Tensor<2, 3> &,
-                                               const Tensor<2, 3> &,
-                                               const unsigned int);
     template unsigned int tangent_axis<3>(const Tensor<1, 3> &);
     template std::array<Tensor<1, 2>, 1>
     tangent_basis<2>(const Tensor<1, 2> &, const unsigned int);
@@ -448,6 +436,18 @@ namespace Signorini
     tangent_basis_derivative<3>(const Tensor<1, 3> &,
                                 const Tensor<2, 3> &,
                                 const unsigned int);
+    template void add_geometric_derivatives<2>(PointResponse<2> &,
+                                               const PointState<2> &,
+                                               const Tensor<1, 2> &,
+                                               const Tensor<2, 2> &,
+                                               const Tensor<2, 2> &,
+                                               const unsigned int);
+    template void add_geometric_derivatives<3>(PointResponse<3> &,
+                                               const PointState<3> &,
+                                               const Tensor<1, 3> &,
+                                               const Tensor<2, 3> &,
+                                               const Tensor<2, 3> &,
+                                               const unsigned int);
     template std::array<Tensor<1, 3>, 2>
     tangent_basis<3>(const Tensor<1, 3> &);
 

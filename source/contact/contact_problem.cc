@@ -122,6 +122,9 @@ namespace Signorini
             (pair.friction == 0 || contact.newton_geometry_frictional) &&
             pair.master != MasterType::body &&
             contact.normal == NormalChoice::master);
+          pairing_exact = (p == 0 || pairing_exact) &&
+                          newton_geometry_pair.back() &&
+                          !(contact.frozen_threshold && pair.friction > 0);
           if (pair.master == MasterType::body)
             {
               obstacles.emplace_back();
@@ -520,8 +523,8 @@ namespace Signorini
       // E / h with h the mean slave face size and E the softer body's
       // Young's modulus (slave, or a meshed master that is softer: a gap
       // error is resisted by the softer body, and rho_n from a stiff slave
-      // on a soft master weighs the gap 1/contrast too much); rho_t = c_t rho_n / (mu
-      // p_ref) makes the tangential stiffness mu p_ref rho_t of a sticking
+      // on a soft master weighs the gap 1/contrast too much);
+      // rho_t = c_t rho_n / (mu p_ref) makes the tangential stiffness mu p_ref rho_t of a sticking
       // point comparable to rho_n (see update_coefficients); before any
       // pressure is known p_ref = 1e-3 E.
       rho_n.assign(n_pairs, 0.);
@@ -542,8 +545,8 @@ namespace Signorini
                              "mesh has (see 'Boundary ids' of the bodies).");
           face_size[p] = hs / hc;
           youngs[p]    = E;
-          rho_n[p]     = pairs[p].rho_n_factor * (Em > 0 ? std::min(E, Em) : E) /
-                     face_size[p];
+          rho_n[p]     = pairs[p].rho_n_factor *
+                     (Em > 0 ? std::min(E, Em) : E) / face_size[p];
           p_ref[p]     = 1e-3 * E;
           rho_t[p]     = pairs[p].friction > 0 ?
                            pairs[p].rho_t_factor * rho_n[p] /

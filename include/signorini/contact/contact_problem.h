@@ -100,12 +100,7 @@ namespace Signorini
       bool
       pairing_is_exact() const
       {
-        for (unsigned int p = 0; p < newton_geometry_pair.size(); ++p)
-          if (!newton_geometry_pair[p] ||
-              (parameters.contact.frozen_threshold &&
-               parameters.contact.pairs[p].friction > 0))
-            return false;
-        return !newton_geometry_pair.empty();
+        return pairing_exact;
       }
 
       /**
@@ -281,7 +276,9 @@ namespace Signorini
       /** Per-pair results of the last evaluation, summed over ranks. */
       struct PairSummary
       {
-        Tensor<1, dim> force; // contact force the slave exerts on the master [N]
+        // Contact force the slave exerts on the master [N] (the force on
+        // the slave is its opposite).
+        Tensor<1, dim> force;
         double         p_max = 0;  // largest p = -lambda at a point [Pa]
         // Sums of w |f . n| and w |P f| over the points, each in its own
         // contact frame [N].
@@ -572,6 +569,7 @@ namespace Signorini
       std::vector<bool>   node_status_pair; // per pair
       // 'Geometric linearisation = newton' on a rigid obstacle, per pair.
       std::vector<bool> newton_geometry_pair;
+      bool              pairing_exact = false; // see pairing_is_exact()
       bool                any_node_status = false;
       // Normal status of the multiplier nodes of node-status pairs (key:
       // lambda DoF; the nodes of this rank's slave faces).
