@@ -456,13 +456,16 @@ namespace Signorini
                       "How often a load step that fails to converge is "
                       "halved and retried before the run stops.");
     prm.declare_entry("Predictor",
-                      "constant",
+                      "extrapolated",
                       Patterns::Selection("constant|extrapolated"),
                       "First iterate of a load step: the last converged "
-                      "state with the new Dirichlet values (constant), or "
-                      "that state plus the increment of the last converged "
-                      "step scaled to the new step size (extrapolated: "
-                      "starts sliding contacts with their slip direction).");
+                      "state plus the increment of the last converged step "
+                      "scaled to the new step size, displacements and "
+                      "multipliers (extrapolated: starts sliding contacts "
+                      "with their slip direction and a growing contact "
+                      "zone with its pressures), or the last converged "
+                      "state (constant). Dirichlet values are those of the "
+                      "new time either way; the first step is constant.");
     prm.leave_subsection();
   }
 
@@ -1163,14 +1166,20 @@ namespace Signorini
                       "active contact zone, refines, transfers the converged "
                       "state and the state at the start of the step "
                       "(displacements and multipliers) to the new mesh and "
-                      "solves the step again.");
+                      "solves the step again (with 'Steps = between': "
+                      "refinement cycles between two steps, no solve).");
     prm.declare_entry("Steps",
                       "last",
-                      Patterns::Selection("last|every"),
+                      Patterns::Selection("last|every|between"),
                       "Which load steps are adapted: the last one only "
-                      "(a mesh for the final state, e.g. Hertz) or every "
-                      "one (the mesh follows a moving contact zone; cells "
-                      "are also coarsened if 'Coarsening fraction' > 0).");
+                      "(a mesh for the final state, e.g. Hertz); every "
+                      "one, solved again on its adapted mesh (the mesh "
+                      "follows a moving contact zone; cells are also "
+                      "coarsened if 'Coarsening fraction' > 0); or between "
+                      "steps: the mesh is adapted to each converged step "
+                      "after its output and the next step starts on it "
+                      "from the transferred state (one solve per step, "
+                      "the mesh one step behind the contact zone).");
     prm.declare_entry("Refinement fraction",
                       "0.1",
                       Patterns::Double(0, 1),
@@ -1209,6 +1218,7 @@ namespace Signorini
     prm.enter_subsection("Adaptive refinement");
     cycles              = prm.get_integer("Cycles");
     every_step          = prm.get("Steps") == "every";
+    between_steps       = prm.get("Steps") == "between";
     refinement_fraction = prm.get_double("Refinement fraction");
     coarsening_fraction = prm.get_double("Coarsening fraction");
     refine_contact_zone = prm.get_bool("Refine contact zone");

@@ -607,16 +607,18 @@ namespace Signorini
     if (!resume)
       state_step_start = state;
     {
-      TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
-      for (const auto i : owned_system)
-        owned[i] = state[i];
       // Extrapolated predictor: the last converged increment, scaled to
       // this step's size; Dirichlet values then override their entries.
-      if (!resume && parameters.load_stepping.extrapolate &&
-          last_step_size > 0)
-        for (const auto i : owned_system)
-          owned[i] += (time - step_start_time) / last_step_size *
-                      last_increment[i];
+      // One insert per entry: an add after an insert would leave the ranks
+      // with and without DoFs in different compress modes (a deadlock).
+      const double factor =
+        !resume && parameters.load_stepping.extrapolate && last_step_size > 0 ?
+          (time - step_start_time) / last_step_size :
+          0.;
+      TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
+      for (const auto i : owned_system)
+        owned[i] = factor != 0 ? state[i] + factor * last_increment[i] :
+                                 static_cast<double>(state[i]);
       owned.compress(VectorOperation::insert);
       constraints_values.distribute(owned);
       state = owned;
@@ -2184,7 +2186,8 @@ namespace Signorini
         // again on the new mesh from the transferred converged state; if
         // that fails, from its transferred start, with step cuts.
         const auto &adaptivity = parameters.adaptivity;
-        if (adaptivity.every_step || step == times.size())
+        if (!adaptivity.between_steps &&
+            (adaptivity.every_step || step == times.size()))
           for (unsigned int cycle = 1; cycle <= adaptivity.cycles; ++cycle)
             {
               pcout << "  adaptive cycle " << cycle << " of "
@@ -2223,6 +2226,19 @@ namespace Signorini
                  << std::setw(4) << std::setfill('0') << step << ".csv";
             contact->write_csv(name.str());
           }
+        // 'Steps = between': the mesh follows the converged state; the
+        // next step starts on it from the transferred state (its
+        // increment: the extrapolated predictor's).
+        if (adaptivity.between_steps && step < times.size())
+          for (unsigned int cycle = 1; cycle <= adaptivity.cycles; ++cycle)
+            {
+              pcout << "  adaptive cycle " << cycle << " of "
+                    << adaptivity.cycles << " for the next step" << std::endl;
+              if (!adapt_mesh(t_done, t_sub_start))
+                break;
+              record_increment();
+              last_converged = state;
+            }
       }
     // What even a quiet run prints (sout): the last step's reference
     // checks, the run summary, the Jacobian check, timing and memory.

@@ -156,6 +156,7 @@ namespace Signorini
   {
     unsigned int cycles;              // refine-and-resolve cycles, 0: off
     bool         every_step;          // false: the last load step only
+    bool         between_steps; // adapt after each step, no re-solve
     double       refinement_fraction; // of the active cells, by count
     double       coarsening_fraction;
     bool         refine_contact_zone;
