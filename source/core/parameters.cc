@@ -1217,8 +1217,10 @@ namespace Signorini
   {
     prm.enter_subsection("Adaptive refinement");
     cycles              = prm.get_integer("Cycles");
-    every_step          = prm.get("Steps") == "every";
-    between_steps       = prm.get("Steps") == "between";
+    const std::string s = prm.get("Steps");
+    steps = s == "every"   ? Steps::every :
+            s == "between" ? Steps::between :
+                             Steps::last;
     refinement_fraction = prm.get_double("Refinement fraction");
     coarsening_fraction = prm.get_double("Coarsening fraction");
     refine_contact_zone = prm.get_bool("Refine contact zone");

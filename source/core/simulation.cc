@@ -2186,8 +2186,9 @@ namespace Signorini
         // again on the new mesh from the transferred converged state; if
         // that fails, from its transferred start, with step cuts.
         const auto &adaptivity = parameters.adaptivity;
-        if (!adaptivity.between_steps &&
-            (adaptivity.every_step || step == times.size()))
+        using AdaptedSteps = AdaptivityParameters::Steps;
+        if (adaptivity.steps == AdaptedSteps::every ||
+            (adaptivity.steps == AdaptedSteps::last && step == times.size()))
           for (unsigned int cycle = 1; cycle <= adaptivity.cycles; ++cycle)
             {
               pcout << "  adaptive cycle " << cycle << " of "
@@ -2229,7 +2230,7 @@ namespace Signorini
         // 'Steps = between': the mesh follows the converged state; the
         // next step starts on it from the transferred state (its
         // increment: the extrapolated predictor's).
-        if (adaptivity.between_steps && step < times.size())
+        if (adaptivity.steps == AdaptedSteps::between && step < times.size())
           for (unsigned int cycle = 1; cycle <= adaptivity.cycles; ++cycle)
             {
               pcout << "  adaptive cycle " << cycle << " of "

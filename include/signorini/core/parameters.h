@@ -154,9 +154,16 @@ namespace Signorini
   /** Adaptive refinement after load steps ('Adaptive refinement'). */
   struct AdaptivityParameters
   {
+    // 'Steps': the last step solved again on its adapted mesh, every step
+    // solved again, or the mesh adapted between steps (no second solve).
+    enum class Steps
+    {
+      last,
+      every,
+      between
+    };
     unsigned int cycles;              // refine-and-resolve cycles, 0: off
-    bool         every_step;          // false: the last load step only
-    bool         between_steps; // adapt after each step, no re-solve
+    Steps        steps;
     double       refinement_fraction; // of the active cells, by count
     double       coarsening_fraction;
     bool         refine_contact_zone;
