@@ -119,8 +119,17 @@ namespace Signorini
           // Newton on the geometry: rigid obstacles with their own normal.
           newton_geometry_pair.push_back(
             contact.newton_geometry &&
-            (pair.friction == 0 || contact.newton_geometry_frictional) &&
+            (pair.friction == 0 || contact.newton_geometry_all) &&
             pair.master != MasterType::body &&
+            contact.normal == NormalChoice::master);
+          // Newton on the pairing of a meshed master ('newton' only; auto
+          // keeps the fixed point, doc/robustness.md): frictionless (the
+          // slip of a meshed pair is not linearised in the geometry),
+          // fixed points (the mortar rule cuts faces at each pairing) and
+          // the master normal.
+          newton_pairing_pair.push_back(
+            contact.newton_geometry_all && pair.friction == 0 &&
+            pair.master == MasterType::body && !mortar &&
             contact.normal == NormalChoice::master);
           pairing_exact = (p == 0 || pairing_exact) &&
                           newton_geometry_pair.back() &&
@@ -885,19 +894,9 @@ namespace Signorini
       std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
       for (unsigned int m = 0; m < master_faces.size(); ++m)
         {
-          const auto &face = master_faces[m];
-          x_master[m].resize(n_face_nodes);
-          Tensor<1, dim> mean_u;
-          for (unsigned int k = 0; k < n_face_nodes; ++k)
-            {
-              x_master[m][k] = face.X[k];
-              for (unsigned int c = 0; c < dim; ++c)
-                x_master[m][k][c] += state[face.dofs[k * dim + c]];
-              mean_u += (x_master[m][k] - face.X[k]) / n_face_nodes;
-            }
-          inside[m] = face.inside + mean_u;
+          master_face_position(m, state, x_master[m], inside[m]);
           BoundingBox<dim> box(x_master[m]);
-          box.extend(0.5 * face_size[face.pair]);
+          box.extend(0.5 * face_size[master_faces[m].pair]);
           boxes.emplace_back(box, m);
         }
       const auto tree = pack_rtree(boxes);
@@ -931,6 +930,7 @@ namespace Signorini
             point.paired      = true;
             point.master_face = m;
             point.normal      = proj.normal;
+            point.xi_m        = proj.xi;
             face_shape_values<dim>(n_face_nodes, proj.xi, point.N_m);
             return true;
           };
@@ -1000,6 +1000,7 @@ namespace Signorini
                   point.paired      = true;
                   point.master_face = best_face;
                   point.normal      = best.normal;
+                  point.xi_m        = best.xi;
                   face_shape_values<dim>(n_face_nodes, best.xi, point.N_m);
                 }
             }
@@ -1395,6 +1396,60 @@ namespace Signorini
 
 
     template <int dim>
+    void
+    ContactProblem<dim>::master_face_position(
+      const unsigned int                   m,
+      const TrilinosWrappers::MPI::Vector &state,
+      std::vector<Point<dim>> &            x,
+      Point<dim> &                         inside) const
+    {
+      const auto &face = master_faces[m];
+      x.resize(face.X.size());
+      Tensor<1, dim> mean_u;
+      for (unsigned int k = 0; k < face.X.size(); ++k)
+        {
+          x[k] = face.X[k];
+          for (unsigned int c = 0; c < dim; ++c)
+            x[k][c] += state[face.dofs[k * dim + c]];
+          mean_u += (x[k] - face.X[k]) / double(face.X.size());
+        }
+      inside = face.inside + mean_u;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::update_projections(
+      const TrilinosWrappers::MPI::Vector &state)
+    {
+      std::vector<Point<dim>> x_face;
+      Point<dim>              inside;
+      for (auto &point : points)
+        {
+          point.reprojected = false;
+          if (!newton_pairing_pair[slave_faces[point.face].pair] ||
+              !point.paired || point.master_face < 0)
+            continue;
+          master_face_position(point.master_face, state, x_face, inside);
+          const auto proj =
+            project_onto_face(slave_position(point, state), x_face, inside);
+          // Off the face (beyond the projection tolerance): the pairing's
+          // projection stays, frozen, until the next pairing finds the
+          // point's new face.
+          if (!proj.converged ||
+              proj.violation > parameters.contact.projection_tolerance)
+            continue;
+          point.reprojected = true;
+          point.xi_m   = proj.xi;
+          point.normal = proj.normal;
+          face_shape_values<dim>(x_face.size(), proj.xi, point.N_m);
+          point.tangents =
+            tangent_basis<dim>(point.normal, point.tangent_axis);
+        }
+    }
+
+
+    template <int dim>
     ContactStatistics
     ContactProblem<dim>::assemble(const TrilinosWrappers::MPI::Vector &state,
                                   const TrilinosWrappers::MPI::Vector &start,
@@ -1408,6 +1463,7 @@ namespace Signorini
       const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
       // Normal status per node (decided before the point loop: a node's
       // status needs the points of all its faces).
+      update_projections(state);
       if (any_node_status)
         stats.n_changed += decide_node_statuses(state);
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
@@ -1420,6 +1476,7 @@ namespace Signorini
       std::vector<double>       N_e, Nd;
       std::vector<unsigned int> comp;
       std::vector<NodeStatusRow<dim>> node_rows;
+      std::vector<Point<dim>>         x_face;
       const auto                           flush = [&]() {
         if (group_dofs.empty())
           return;
@@ -1712,6 +1769,40 @@ namespace Signorini
                             r.dforce_dLambda[k][comp[a]];
                           K(o_f + l * (dim - 1) + k, a) =
                             sf * w * psi[l] * Nd[a] * r.drf_dd[k][comp[a]];
+                        }
+                    }
+                }
+              // Newton on the pairing of a meshed master: the force
+              // f = (f . n) n turns with n, and the master rows follow
+              // N_m(xi_m); the gap needs nothing more (at the closest
+              // point, dg = n . (du^e - N_m du^m) exactly).
+              if (point.reprojected)
+                {
+                  Point<dim> inside;
+                  master_face_position(point.master_face, state, x_face, inside);
+                  const auto D = face_projection_derivatives<dim>(
+                    x_e, x_face, point.xi_m, s.normal);
+                  const double phi = r.force * s.normal;
+                  for (unsigned int j = 0; j < n_e + n_m; ++j)
+                    {
+                      // Column j: slave DoF j (moves x_e by N_e e_c) or
+                      // component c of master support point k.
+                      const unsigned int c = comp[j];
+                      Tensor<1, dim>     dn;
+                      Tensor<1, dim - 1> dxi;
+                      const unsigned int k = j < n_e ? 0 : (j - n_e) / dim;
+                      for (unsigned int i = 0; i < dim; ++i)
+                        dn[i] = j < n_e ? N_e[j] * D.dn_dp[i][c] :
+                                          D.dn_dX[k][i][c];
+                      for (unsigned int a = 0; a < dim - 1; ++a)
+                        dxi[a] = j < n_e ? N_e[j] * D.dxi_dp[a][c] :
+                                           D.dxi_dX[k][a][c];
+                      for (unsigned int a = 0; a < n_e + n_m; ++a)
+                        {
+                          const double dNd =
+                            a < n_e ? 0. : -(D.dN[(a - n_e) / dim] * dxi);
+                          K(a, j) += w * (dNd * r.force[comp[a]] +
+                                          Nd[a] * phi * dn[comp[a]]);
                         }
                     }
                 }

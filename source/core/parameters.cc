@@ -861,10 +861,15 @@ namespace Signorini
                       "with their derivatives in the Jacobian (newton: the "
                       "curvature of a ball or cylinder no longer costs "
                       "geometric iterations). auto: newton for frictionless "
-                      "pairs, fixed point for frictional ones (with friction "
-                      "the rotating normal makes the stick/slip search "
-                      "harder, doc/robustness.md). Meshed masters always "
-                      "use the fixed point.");
+                      "rigid pairs, fixed point for frictional ones (with "
+                      "friction the rotating normal makes the stick/slip "
+                      "search harder, doc/robustness.md) and for meshed "
+                      "masters. newton: also frictional rigid pairs, and "
+                      "frictionless meshed masters (except the mortar "
+                      "rule): each point projected again onto its master "
+                      "face at every iterate, with the derivatives of the "
+                      "projection in the Jacobian; the geometric loop only "
+                      "changes faces.");
     prm.declare_entry("Threshold coupling",
                       "true",
                       Patterns::Bool(),
@@ -944,7 +949,7 @@ namespace Signorini
     node_status              = prm.get("Normal status") == "node";
     frozen_threshold         = prm.get("Friction threshold") == "frozen";
     newton_geometry = prm.get("Geometric linearisation") != "fixed point";
-    newton_geometry_frictional =
+    newton_geometry_all =
       prm.get("Geometric linearisation") == "newton";
     threshold_coupling       = prm.get_bool("Threshold coupling");
     penalty                  = prm.get_bool("Penalty");

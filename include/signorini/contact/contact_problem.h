@@ -400,7 +400,11 @@ namespace Signorini
         int segment_master = -1; // mortar: master face of the point's piece
         bool           paired      = false;
         int            master_face = -1; // -1: rigid or unpaired
-        std::vector<double> N_m;         // master shape values at xi
+        std::vector<double> N_m;         // master shape values at xi_m
+        Point<dim - 1> xi_m;             // projection on the master face
+        // Projected again at the last evaluation (meshed master, Newton on
+        // the pairing): its derivatives enter the Jacobian.
+        bool reprojected = false;
         Tensor<1, dim> normal;
         std::array<Tensor<1, dim>, dim - 1> tangents;
         unsigned int   tangent_axis = 0; // 3D axis of T, fixed at pairing
@@ -545,6 +549,24 @@ namespace Signorini
       std::vector<double>
       dual_basis(const SlaveFace &face) const;
 
+      /**
+       * Meshed masters with 'Geometric linearisation = newton': projects
+       * every paired point again onto its master face at @p state (same
+       * face; the geometric loop changes faces) and updates xi_m, N_m and
+       * the normal. A projection that fails or leaves the face (beyond
+       * the projection tolerance) keeps the last one, frozen.
+       */
+      void
+      update_projections(const TrilinosWrappers::MPI::Vector &state);
+
+      /** Current positions of the support points of master face @p m and
+       * a point inside its cell (orientation of the normal). */
+      void
+      master_face_position(const unsigned int                   m,
+                           const TrilinosWrappers::MPI::Vector &state,
+                           std::vector<Point<dim>> &            x,
+                           Point<dim> &                         inside) const;
+
       /** The law response of a point of a node-status pair. */
       PointResponse<dim>
       node_status_response(const ContactPoint &   point,
@@ -569,6 +591,10 @@ namespace Signorini
       std::vector<bool>   node_status_pair; // per pair
       // 'Geometric linearisation = newton' on a rigid obstacle, per pair.
       std::vector<bool> newton_geometry_pair;
+      // The same on a meshed master (frictionless, non-mortar): each point
+      // projected again onto its master face at every evaluation, with the
+      // derivatives of the projection in the Jacobian.
+      std::vector<bool> newton_pairing_pair;
       bool              pairing_exact = false; // see pairing_is_exact()
       bool                any_node_status = false;
       // Normal status of the multiplier nodes of node-status pairs (key:

@@ -320,7 +320,9 @@ namespace Signorini
     bool                               frozen_threshold;
     // 'Geometric linearisation' for rigid obstacles: Newton on every rigid
     // pair (newton), on the frictionless ones (auto), on none (fixed point).
-    bool newton_geometry, newton_geometry_frictional;
+    // newton_geometry: 'auto' or 'newton'; newton_geometry_all: 'newton'
+    // explicitly (also frictional rigid pairs and meshed masters).
+    bool newton_geometry, newton_geometry_all;
     bool                               threshold_coupling;
     bool                               penalty;
     double                             projection_tolerance;
