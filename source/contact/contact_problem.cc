@@ -888,7 +888,6 @@ namespace Signorini
           }
 
       // Master faces in the current configuration and their boxes.
-      const unsigned int n_face_nodes = face_fe.n_dofs_per_cell();
       std::vector<std::vector<Point<dim>>> x_master(master_faces.size());
       std::vector<Point<dim>>              inside(master_faces.size());
       std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
@@ -929,9 +928,7 @@ namespace Signorini
               return false;
             point.paired      = true;
             point.master_face = m;
-            point.normal      = proj.normal;
-            point.xi_m        = proj.xi;
-            face_shape_values<dim>(n_face_nodes, proj.xi, point.N_m);
+            take_projection(point, proj);
             return true;
           };
           if (obstacles[p])
@@ -999,9 +996,7 @@ namespace Signorini
                 {
                   point.paired      = true;
                   point.master_face = best_face;
-                  point.normal      = best.normal;
-                  point.xi_m        = best.xi;
-                  face_shape_values<dim>(n_face_nodes, best.xi, point.N_m);
+                  take_projection(point, best);
                 }
             }
           // Pairing 2-cycle: back on the face of two pairings before.
@@ -1440,9 +1435,7 @@ namespace Signorini
               proj.violation > parameters.contact.projection_tolerance)
             continue;
           point.reprojected = true;
-          point.xi_m   = proj.xi;
-          point.normal = proj.normal;
-          face_shape_values<dim>(x_face.size(), proj.xi, point.N_m);
+          take_projection(point, proj);
           point.tangents =
             tangent_basis<dim>(point.normal, point.tangent_axis);
         }

@@ -559,6 +559,16 @@ namespace Signorini
       void
       update_projections(const TrilinosWrappers::MPI::Vector &state);
 
+      /** Takes the projection @p proj onto a master face as the point's:
+       * xi_m, N_m(xi_m) and the normal. */
+      void
+      take_projection(ContactPoint &point, const FaceProjection<dim> &proj) const
+      {
+        point.xi_m   = proj.xi;
+        point.normal = proj.normal;
+        face_shape_values<dim>(face_fe.n_dofs_per_cell(), proj.xi, point.N_m);
+      }
+
       /** Current positions of the support points of master face @p m and
        * a point inside its cell (orientation of the normal). */
       void
