@@ -196,7 +196,8 @@ namespace Signorini
           // Section 3.1: contact iff lambda_aug < 0 (strict: lambda_aug == 0
           // is the kink, assigned to the free side).
           const double lambda_aug = state.lambda - rho_n * state.gap;
-          response.in_contact     = (lambda_aug < 0.) || state.freeze_contact;
+          response.in_contact =
+            ((lambda_aug < 0.) || state.freeze_contact) && !state.release;
 
           if (response.in_contact)
             {
@@ -226,7 +227,7 @@ namespace Signorini
           // only post-processes lambda -> -eps_n max(g, 0) with the sign of
           // the Lagrangian law (lambda <= 0 in compression) and keeps the
           // lambda block nonsingular; the force does not depend on lambda.
-          response.in_contact = (state.gap > 0.);
+          response.in_contact = (state.gap > 0.) && !state.release;
           response.r_c         = -state.lambda / rho_n;
           response.drc_dlambda = -1. / rho_n;
 

@@ -1376,7 +1376,8 @@ namespace Signorini
                                   node_in_contact(state[dof],
                                                   G_read[dof],
                                                   D_read[dof],
-                                                  rho_n[face.pair]);
+                                                  rho_n[face.pair]) &&
+                                  node_release.count(dof) == 0;
               const auto it = node_active.find(dof);
               if (it != node_active.end() && it->second == active)
                 continue;
@@ -1458,7 +1459,12 @@ namespace Signorini
       // status needs the points of all its faces).
       update_projections(state);
       if (any_node_status)
-        stats.n_changed += decide_node_statuses(state);
+        {
+          stats.n_changed += decide_node_statuses(state);
+          // The statuses of the next solve (release extrapolation).
+          if (matrix)
+            node_active_solved = node_active;
+        }
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
       FullMatrix<double>                   K, K_group;
@@ -1574,6 +1580,7 @@ namespace Signorini
           s.freeze_contact        = point.freeze_contact;
           s.frozen_slip_direction = point.frozen_slip_direction;
           s.freeze_stick          = point.freeze_stick;
+          s.release               = point.release;
           const bool by_node      = node_status_pair[p];
           auto r =
             by_node ? node_status_response(point, s) : evaluate_contact_law(s, law);
@@ -1865,8 +1872,14 @@ namespace Signorini
     ContactProblem<dim>::start_newton_solve()
     {
       iterates_recorded = 0;
+      node_release.clear();
+      node_extrapolated.clear();
+      node_kept.clear();
       for (auto &point : points)
         {
+          point.release      = false;
+          point.extrapolated = false;
+          point.keep_closed  = false;
           point.status_before         = point.status;
           point.direction_before      = point.slip_direction;
           point.cycles                = 0;
@@ -1974,6 +1987,183 @@ namespace Signorini
           }
       refrozen = Utilities::MPI::sum(again, comm);
       return Utilities::MPI::sum(n, comm);
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::extrapolate_releases()
+    {
+      if (!parameters.contact.release_extrapolation)
+        return 0;
+      const unsigned int n_pairs = parameters.contact.pairs.size();
+      // The status carriers of every pair (points; multiplier nodes on
+      // node-status pairs) by class at this iterate: tension (closed in
+      // the last solve, open now), compression (closed both), open (both),
+      // entered (open in the last solve, closed now).
+      enum : int
+      {
+        tension = 0,
+        compression,
+        open,
+        entered
+      };
+      const auto class_of = [](const bool before, const bool now) {
+        return before ? (now ? compression : tension) : (now ? entered : open);
+      };
+      struct Carrier
+      {
+        Point<dim> x;
+        int        kind;
+        int        point; // index into points, or -1 (node)
+        types::global_dof_index dof;
+        bool                    kept; // closed again after such a release
+      };
+      std::vector<std::vector<Carrier>> carriers(n_pairs);
+      for (unsigned int i = 0; i < points.size(); ++i)
+        {
+          auto &             point = points[i];
+          const unsigned int p     = slave_faces[point.face].pair;
+          const bool         now   = point.status != PointStatus::free;
+          // Released early and closed again: not released early again in
+          // this Newton solve.
+          if (point.extrapolated && now)
+            point.keep_closed = true;
+          point.extrapolated = false;
+          if (!node_status_pair[p])
+            carriers[p].push_back(
+              {point.x_ref,
+               class_of(point.status_before != PointStatus::free, now),
+               static_cast<int>(i),
+               0,
+               point.keep_closed || point.freeze_contact});
+        }
+      std::set<types::global_dof_index> seen;
+      for (const auto &face : slave_faces)
+        if (node_status_pair[face.pair])
+          for (unsigned int k = 0; k < face.X.size(); ++k)
+            {
+              const auto dof = face.lambda_dofs[face.k_node[k]];
+              if (!seen.insert(dof).second)
+                continue;
+              const bool now = node_active.at(dof);
+              if (node_extrapolated.count(dof) && now)
+                node_kept.insert(dof);
+              const auto before = node_active_solved.find(dof);
+              carriers[face.pair].push_back(
+                {face.X[k],
+                 class_of(before != node_active_solved.end() &&
+                            before->second,
+                          now),
+                 -1,
+                 dof,
+                 node_kept.count(dof) > 0});
+            }
+      node_extrapolated.clear();
+
+      unsigned int n_released = 0;
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        {
+          // Frictionless pairs only: with friction the tension band does
+          // not follow the halving (SSNV128 in one step: 9 -> 11 Newton).
+          if (law_parameters(p).mu > 0)
+            continue;
+          // All carriers of the pair, from all ranks (coordinates and
+          // class).
+          std::vector<double> pack;
+          for (const auto &c : carriers[p])
+            {
+              for (unsigned int d = 0; d < dim; ++d)
+                pack.push_back(c.x[d]);
+              pack.push_back(c.kind);
+            }
+          std::vector<std::pair<Point<dim>, unsigned int>> all, band;
+          std::vector<int>                                 kind;
+          for (const auto &part : Utilities::MPI::all_gather(comm, pack))
+            for (unsigned int i = 0; i + dim < part.size(); i += dim + 1)
+              {
+                Point<dim> x;
+                for (unsigned int d = 0; d < dim; ++d)
+                  x[d] = part[i + d];
+                const int k = static_cast<int>(part[i + dim]);
+                if (k == tension)
+                  band.emplace_back(x, band.size());
+                all.emplace_back(x, all.size());
+                kind.push_back(k);
+              }
+          // Only while the zone shrinks: none entered, some in tension.
+          if (band.empty() ||
+              std::find(kind.begin(), kind.end(), int(entered)) != kind.end())
+            continue;
+          const auto band_tree = pack_rtree(band);
+          const auto all_tree  = pack_rtree(all);
+          // Candidates: carriers in compression whose mirror image across
+          // their nearest tension carrier lies in the band (the carrier
+          // nearest to the image is in tension), with their distance to it.
+          std::vector<std::pair<const Carrier *, double>> candidates;
+          for (const auto &c : carriers[p])
+            {
+              if (c.kind != compression || c.kept)
+                continue;
+              std::vector<std::pair<Point<dim>, unsigned int>> hit;
+              band_tree.query(boost::geometry::index::nearest(c.x, 1),
+                              std::back_inserter(hit));
+              const Point<dim> image    = c.x + 2. * (hit[0].first - c.x);
+              const double     distance = c.x.distance(hit[0].first);
+              hit.clear();
+              all_tree.query(boost::geometry::index::nearest(image, 1),
+                             std::back_inserter(hit));
+              if (kind[hit[0].second] == tension)
+                candidates.emplace_back(&c, distance);
+            }
+          // At most as many as the band holds, and at most half of those in
+          // compression, the nearest to the band first: on a graded mesh a
+          // band of a few long elements mirrors onto the whole zone, and
+          // a pair left without contact would float.
+          const std::size_t n_band = band.size();
+          const std::size_t n_compression =
+            std::count(kind.begin(), kind.end(), int(compression));
+          const std::size_t cap = std::min(n_band, n_compression / 2);
+          std::vector<double> mine_d;
+          for (const auto &c : candidates)
+            mine_d.push_back(c.second);
+          std::vector<double> distances;
+          for (const auto &part : Utilities::MPI::all_gather(comm, mine_d))
+            distances.insert(distances.end(), part.begin(), part.end());
+          if (cap == 0 || distances.empty())
+            continue;
+          std::sort(distances.begin(), distances.end());
+          const double limit = distances[std::min(cap, distances.size()) - 1];
+          for (const auto &candidate : candidates)
+            {
+              if (candidate.second > limit)
+                continue;
+              const Carrier &c = *candidate.first;
+              if (c.point >= 0)
+                {
+                  points[c.point].release      = true;
+                  points[c.point].extrapolated = true;
+                  ++n_released;
+                }
+              else
+                {
+                  node_release.insert(c.dof);
+                  node_extrapolated.insert(c.dof);
+                  n_released += owned_multipliers.is_element(c.dof);
+                }
+            }
+        }
+      return Utilities::MPI::sum(n_released, comm);
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::clear_releases()
+    {
+      for (auto &point : points)
+        point.release = false;
+      node_release.clear();
     }
 
 

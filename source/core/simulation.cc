@@ -1027,7 +1027,19 @@ namespace Signorini
             continue; // re-evaluate the same iterate
           }
 
+        // Release extrapolation (a shrinking contact zone): the points
+        // released early stay open for this solve only.
+        if (contact->active() && iterations >= 1)
+          if (const unsigned int n = contact->extrapolate_releases(); n > 0)
+            {
+              early_releases += n;
+              if (show_contact)
+                pcout << "    release extrapolation: " << n
+                      << " point(s) opened for this solve" << std::endl;
+            }
         assemble(true);
+        if (contact->active())
+          contact->clear_releases();
         TimerOutput::Scope t(timer, "linear solve");
         TrilinosWrappers::MPI::Vector update(owned_system, mpi_communicator);
         const unsigned int krylov =
@@ -2263,6 +2275,9 @@ namespace Signorini
           sout << ", status cycles detected " << run_cycles
                << ", points frozen " << run_frozen << ", released "
                << run_released;
+        if (early_releases > 0)
+          sout << ", opened early (release extrapolation) "
+               << early_releases;
         if (parameters.newton.line_search_steps > 0)
           sout << ", line searches " << run_line_searches;
         sout << std::endl;

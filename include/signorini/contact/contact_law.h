@@ -176,6 +176,14 @@ namespace Signorini
        * plain law.
        */
       bool freeze_stick = false;
+
+      /**
+       * Active-set search ("release extrapolation"): take the free branch
+       * whatever lambda_aug says, for one linear solve. Set by the assembly
+       * for a point that ContactProblem::extrapolate_releases() chose;
+       * false for the plain law.
+       */
+      bool release = false;
     };
 
 

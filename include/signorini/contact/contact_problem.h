@@ -23,6 +23,7 @@
 
 #include <map>
 #include <memory>
+#include <set>
 #include <vector>
 
 /**
@@ -232,6 +233,29 @@ namespace Signorini
       release_frozen(unsigned int &refrozen);
 
       /**
+       * Release extrapolation (doc/robustness.md): call after the residual
+       * evaluation of an iterate that follows a solve, before the matrix
+       * assembly. Per pair whose contact zone only shrank at this iterate
+       * (points that were closed at the iterate before and are open now:
+       * the tension band T; none that opened before and closed now), every
+       * point still closed whose mirror image across its nearest point of
+       * T lies in T (the nearest point of the pair to the image is in T) is
+       * released for the next solve: near a smooth contact edge a too wide
+       * zone gives tension only in its outer half, so the band halves per
+       * plain solve and the mirror jumps to the edge. Frozen points and
+       * frictional pairs are left alone, and so is, for the rest of the
+       * Newton solve, a carrier that closed again after such a release.
+       * At most as many as the band holds and half of those in
+       * compression are released, the nearest to the band first. Returns
+       * the number of points released (over all ranks); clear_releases()
+       * ends their release after the matrix assembly.
+       */
+      unsigned int
+      extrapolate_releases();
+      void
+      clear_releases();
+
+      /**
        * Anti-cycling across pairings (formulation.md 7.3 and 8). A point
        * whose converged status at the end of geometric iteration g equals
        * its status at the end of g-2 and differs from g-1 makes the fixed
@@ -423,6 +447,10 @@ namespace Signorini
         bool           freeze_contact = false;
         Tensor<1, dim> frozen_slip_direction; // zero: not frozen
         bool           freeze_stick = false;
+        // Release extrapolation: open for the next solve (release),
+        // released that way at the last solve (extrapolated), closed again
+        // after such a release (keep_closed: not again in this solve).
+        bool release = false, extrapolated = false, keep_closed = false;
         // Geometric loop: converged statuses at the end of the last two
         // geometric iterations of the step; frozen for the step.
         PointStatus    geo_status_1 = PointStatus::free;
@@ -611,6 +639,13 @@ namespace Signorini
       // lambda DoF; the nodes of this rank's slave faces).
       std::map<types::global_dof_index, bool> node_active;
       unsigned int        iterates_recorded = 0; // in this Newton solve
+      // Release extrapolation on node-status pairs: the node statuses of
+      // the last solve, the nodes open for the next solve, those opened
+      // that way for the last, and those that closed again after such a
+      // release (not released early again in this Newton solve).
+      std::map<types::global_dof_index, bool> node_active_solved;
+      std::set<types::global_dof_index> node_release, node_extrapolated,
+        node_kept;
       unsigned int        n_newly_pinned = 0, pairings_in_step = 0;
 
       types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;

@@ -329,6 +329,7 @@ namespace Signorini
     double                             geometric_tolerance;
     unsigned int                       max_geometric_iterations;
     unsigned int                       freeze_after_cycles; // 0: never
+    bool                               release_extrapolation;
 
     static void declare_parameters(ParameterHandler &prm, const Counts &counts);
     void        parse_parameters(ParameterHandler &prm, const Counts &counts);

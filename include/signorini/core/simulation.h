@@ -232,6 +232,8 @@ namespace Signorini
     unsigned int n_failed_checks = 0;
     unsigned int run_cuts = 0, run_cycles = 0, run_frozen = 0,
                  run_released = 0;
+    // Points opened early by the release extrapolation (whole run).
+    unsigned int early_releases = 0;
     unsigned int             history_step = 0, history_geometric = 0;
     double                   history_time = 0;
   };
