@@ -866,7 +866,8 @@ namespace Signorini
     void
     ContactProblem<dim>::pair(const TrilinosWrappers::MPI::Vector &state,
                               const double                         time,
-                              const double                         t0)
+                              const double                         t0,
+                              const bool within_newton)
     {
       const auto &pairs = parameters.contact.pairs;
 
@@ -906,7 +907,7 @@ namespace Signorini
       const auto &       contact      = parameters.contact;
       const unsigned int freeze_after = contact.freeze_after_cycles;
       unsigned int       n_pinned     = 0;
-      ++pairings_in_step;
+      pairings_in_step += within_newton ? 0 : 1;
       for (auto &point : points)
         {
           const auto &       face = slave_faces[point.face];
@@ -1000,17 +1001,20 @@ namespace Signorini
                 }
             }
           // Pairing 2-cycle: back on the face of two pairings before.
-          if (!mortar && !obstacles[p] && point.pinned_face < 0 &&
-              freeze_after > 0 && point.master_face >= 0 &&
-              pairings_in_step >= 3 &&
+          if (!within_newton && !mortar && !obstacles[p] &&
+              point.pinned_face < 0 && freeze_after > 0 &&
+              point.master_face >= 0 && pairings_in_step >= 3 &&
               point.master_face == point.geo_face_2 &&
               point.master_face != point.geo_face_1)
             {
               point.pinned_face = point.master_face;
               ++n_pinned;
             }
-          point.geo_face_2 = point.geo_face_1;
-          point.geo_face_1 = point.master_face;
+          if (!within_newton)
+            {
+              point.geo_face_2 = point.geo_face_1;
+              point.geo_face_1 = point.master_face;
+            }
           // The contact normal points into the master (formulation.md 2),
           // along the slave's outward normal.
           if (!point.paired)
@@ -1265,10 +1269,12 @@ namespace Signorini
       TrilinosWrappers::MPI::Vector &      state_owned) const
     {
       const auto status = parameters.contact.initial_status;
-      if (status == InitialStatus::penetrating)
-        return;
       // lambda_aug = lambda - rho_n g = -/+ delta at every point, as the
-      // psi-weighted average over the node's points.
+      // psi-weighted average over the node's points. 'penetrating': the
+      // points that touch (g >= 0 up to the round-off of mesh coordinates,
+      // 1e-8 of the face size) start closed, as where they penetrate; the
+      // others keep lambda = 0 (lambda_aug = -rho_n g: open).
+      const double touch_tolerance = 1e-8;
       auto num = writable_vector(owned_multipliers, extra, comm);
       auto den = writable_vector(owned_multipliers, extra, comm);
       for (const auto &point : points)
@@ -1288,6 +1294,12 @@ namespace Signorini
           if (status == InitialStatus::closed)
             target = std::min(0., rho_n[p] * std::max(g, -1e300 / rho_n[p])) -
                      delta;
+          else if (status == InitialStatus::penetrating)
+            {
+              if (!point.paired)
+                continue;
+              target = g >= -touch_tolerance * face_size[p] ? -delta : 0.;
+            }
           else
             target = std::max(0., rho_n[p] * g) + delta;
           if (status == InitialStatus::closed && !point.paired)
@@ -2170,7 +2182,9 @@ namespace Signorini
     template <int dim>
     struct ContactProblem<dim>::PointsState
     {
-      std::vector<ContactPoint> points;
+      std::vector<ContactPoint>               points;
+      std::map<types::global_dof_index, bool> node_active;
+      unsigned int                            iterates_recorded;
     };
 
 
@@ -2178,7 +2192,8 @@ namespace Signorini
     std::shared_ptr<const typename ContactProblem<dim>::PointsState>
     ContactProblem<dim>::save_points() const
     {
-      return std::make_shared<const PointsState>(PointsState{points});
+      return std::make_shared<const PointsState>(
+        PointsState{points, node_active, iterates_recorded});
     }
 
 
@@ -2186,7 +2201,9 @@ namespace Signorini
     void
     ContactProblem<dim>::restore_points(const PointsState &saved)
     {
-      points = saved.points;
+      points      = saved.points;
+      node_active       = saved.node_active;
+      iterates_recorded = saved.iterates_recorded;
     }
 
 

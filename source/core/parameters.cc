@@ -831,7 +831,8 @@ namespace Signorini
                       Patterns::Selection("open|penetrating|closed"),
                       "Status of the contact points at the first Newton "
                       "iteration of the run: open, closed where penetrating "
-                      "(g > 0), or all closed (holds bodies that only "
+                      "or touching (g >= 0, to 1e-8 of the face size), or "
+                      "all closed (holds bodies that only "
                       "contact supports; open points are released by "
                       "Newton).");
     prm.declare_entry("Normal status",
@@ -928,6 +929,20 @@ namespace Signorini
       "half of those in compression, the nearest first; one that closes "
       "again is not opened early again in that Newton solve. The "
       "converged state is unchanged. false: plain primal-dual active set.");
+    prm.declare_entry(
+      "Pairing at status changes",
+      "false",
+      Patterns::Bool(),
+      "Frictionless pairs with a meshed master and a point rule (not "
+      "mortar): pair again at every Newton iterate whose statuses "
+      "changed, before its solve (that iterate needs a solve anyway), so "
+      "that the pairing follows the active-set search and the geometric "
+      "loop starts from a pairing at most one solve old (one solve less "
+      "per step, doc/robustness.md). The pairing accepted then depends on "
+      "the path of the search, within the 'Geometric tolerance' (p0 "
+      "differs by 2e-4 across the Normal coefficient), and at c_n = 1e6 "
+      "the statuses chatter. false: the pairing is renewed only between "
+      "Newton solves (formulation.md 7).");
     for (unsigned int k = 1; k <= counts.n_pairs; ++k)
       {
         prm.enter_subsection("Pair " + std::to_string(k));
@@ -971,6 +986,7 @@ namespace Signorini
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
     freeze_after_cycles      = prm.get_integer("Freeze after cycles");
     release_extrapolation    = prm.get_bool("Release extrapolation");
+    pairing_at_status_changes = prm.get_bool("Pairing at status changes");
     pairs.resize(counts.n_pairs);
     for (unsigned int k = 0; k < counts.n_pairs; ++k)
       {

@@ -596,6 +596,7 @@ namespace Signorini
   {
     history_time      = time;
     history_geometric = 0;
+    pairing_step_start_time = step_start_time;
     force_scale       = 0;
     make_constraints(time);
     for (auto &f : neumann_functions)
@@ -664,8 +665,8 @@ namespace Signorini
           TimerOutput::Scope t(timer, "sparsity");
           make_sparsity();
         }
-        const TrilinosWrappers::MPI::Vector at_pairing = state;
-        unsigned int                        its        = 0;
+        state_at_pairing = state;
+        unsigned int its = 0;
         // A pairing that will change is not worth the last quadratic
         // iterations: hand over at 'Tolerance between pairings' (not in
         // the last allowed geometric iteration, nor when a new pairing
@@ -686,7 +687,8 @@ namespace Signorini
         double change = 0, increment = 0;
         for (const auto i : locally_owned)
           {
-            change    = std::max(change, std::abs(state[i] - at_pairing[i]));
+            change =
+              std::max(change, std::abs(state[i] - state_at_pairing[i]));
             increment = std::max(increment,
                                  std::abs(state[i] - state_step_start[i]));
           }
@@ -895,7 +897,33 @@ namespace Signorini
             contact->update_coefficients(state);
             contact->start_newton_solve();
           }
+        // A status change at this iterate means another solve: with
+        // 'Pairing at status changes', pair at this iterate first and
+        // evaluate it again, so that the pairing follows the active-set
+        // search (the first evaluation is undone: the statuses of the
+        // last solve stay the reference of the status history).
+        const bool pair_here = contact->active() && iterations >= 1 &&
+                               contact->pairing_within_newton();
+        const auto saved_points =
+          pair_here ? contact->save_points() : nullptr;
         assemble(false);
+        bool paired_here = false;
+        if (pair_here && contact_statistics.n_changed > 0)
+          {
+            {
+              TimerOutput::Scope t(timer, "pairing");
+              contact->restore_points(*saved_points);
+              contact->pair(state,
+                            history_time,
+                            pairing_step_start_time,
+                            true);
+              make_sparsity();
+            }
+            assemble(false);
+            state_at_pairing = state;
+            paired_here      = true;
+            ++newton_pairings;
+          }
         const auto   block = block_residuals();
         const double residual =
           std::sqrt(block[0] * block[0] + block[1] * block[1] +
@@ -975,7 +1003,8 @@ namespace Signorini
               pcout << " cycling " << st.n_cycling;
             if (st.n_frozen + st.n_newly_frozen > 0)
               pcout << " frozen " << st.n_frozen + st.n_newly_frozen;
-            pcout << (converged ? "  converged" : "") << std::endl;
+            pcout << (paired_here ? "  (paired again)" : "")
+                  << (converged ? "  converged" : "") << std::endl;
           }
         else if (verbose)
           pcout << "    Newton " << std::setw(2) << iterations

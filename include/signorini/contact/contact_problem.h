@@ -105,6 +105,28 @@ namespace Signorini
       }
 
       /**
+       * True if the pairing is renewed at the Newton iterates whose
+       * statuses changed ('Pairing at status changes'): every pair
+       * frictionless with a meshed master, no mortar segmentation (which
+       * rebuilds the points), no Newton on the pairing.
+       */
+      bool
+      pairing_within_newton() const
+      {
+        if (!parameters.contact.pairing_at_status_changes || mortar ||
+            pairing_exact)
+          return false;
+        for (const bool newton : newton_pairing_pair)
+          if (newton)
+            return false;
+        for (unsigned int p = 0; p < parameters.contact.pairs.size(); ++p)
+          if (parameters.contact.pairs[p].friction > 0 ||
+              parameters.contact.pairs[p].master != MasterType::body)
+            return false;
+        return true;
+      }
+
+      /**
        * Finds the slave and master surfaces, numbers the multipliers and
        * computes the coefficients. Needs the displacement constraints
        * (hanging nodes and Dirichlet) of the locally relevant DoFs to decide
@@ -157,12 +179,15 @@ namespace Signorini
        * closest-point projection on the master faces proposed by a
        * bounding-box tree, or on the rigid obstacle at time @p time.
        * @p state is the ghosted system vector. @p step_start_time is the
-       * start of the load step (rigid obstacle increments).
+       * start of the load step (rigid obstacle increments). A pairing
+       * @p within_newton (at a status-changing Newton iterate) is not part
+       * of the pairing history of the geometric loop (2-cycle pins).
        */
       void
       pair(const TrilinosWrappers::MPI::Vector &state,
            const double                         time,
-           const double                         step_start_time);
+           const double                         step_start_time,
+           const bool                           within_newton = false);
 
       /**
        * Friction augmentation rho_t = c_t rho_n / (mu p_ref) per pair, with

@@ -330,6 +330,7 @@ namespace Signorini
     unsigned int                       max_geometric_iterations;
     unsigned int                       freeze_after_cycles; // 0: never
     bool                               release_extrapolation;
+    bool pairing_at_status_changes; // pair at status-changing iterates
 
     static void declare_parameters(ParameterHandler &prm, const Counts &counts);
     void        parse_parameters(ParameterHandler &prm, const Counts &counts);
