@@ -134,6 +134,13 @@ namespace Signorini
           pairing_exact = (p == 0 || pairing_exact) &&
                           newton_geometry_pair.back() &&
                           !(contact.frozen_threshold && pair.friction > 0);
+          // Pairing at status changes: frictionless meshed masters with a
+          // point rule, pairing frozen within the Newton solve.
+          pairing_in_newton = (p == 0 || pairing_in_newton) &&
+                              contact.pairing_at_status_changes && !mortar &&
+                              pair.friction == 0 &&
+                              pair.master == MasterType::body &&
+                              !newton_pairing_pair.back();
           if (pair.master == MasterType::body)
             {
               obstacles.emplace_back();
@@ -1290,20 +1297,16 @@ namespace Signorini
           // threshold: Lambda = F_t / (mu delta) of order 1e8 at the first
           // iterate.
           const double delta = 0.5 * law_parameters(p).zero_threshold;
-          double       target;
+          if (status != InitialStatus::open && !point.paired)
+            continue;
+          double target;
           if (status == InitialStatus::closed)
             target = std::min(0., rho_n[p] * std::max(g, -1e300 / rho_n[p])) -
                      delta;
           else if (status == InitialStatus::penetrating)
-            {
-              if (!point.paired)
-                continue;
-              target = g >= -touch_tolerance * face_size[p] ? -delta : 0.;
-            }
+            target = g >= -touch_tolerance * face_size[p] ? -delta : 0.;
           else
             target = std::max(0., rho_n[p] * g) + delta;
-          if (status == InitialStatus::closed && !point.paired)
-            continue;
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
             {
               const double w = point.weight * point.psi[l];
@@ -2201,7 +2204,7 @@ namespace Signorini
     void
     ContactProblem<dim>::restore_points(const PointsState &saved)
     {
-      points      = saved.points;
+      points            = saved.points;
       node_active       = saved.node_active;
       iterates_recorded = saved.iterates_recorded;
     }

@@ -922,7 +922,6 @@ namespace Signorini
             assemble(false);
             state_at_pairing = state;
             paired_here      = true;
-            ++newton_pairings;
           }
         const auto   block = block_residuals();
         const double residual =

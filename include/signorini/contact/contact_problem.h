@@ -113,17 +113,7 @@ namespace Signorini
       bool
       pairing_within_newton() const
       {
-        if (!parameters.contact.pairing_at_status_changes || mortar ||
-            pairing_exact)
-          return false;
-        for (const bool newton : newton_pairing_pair)
-          if (newton)
-            return false;
-        for (unsigned int p = 0; p < parameters.contact.pairs.size(); ++p)
-          if (parameters.contact.pairs[p].friction > 0 ||
-              parameters.contact.pairs[p].master != MasterType::body)
-            return false;
-        return true;
+        return pairing_in_newton;
       }
 
       /**
@@ -659,6 +649,7 @@ namespace Signorini
       // derivatives of the projection in the Jacobian.
       std::vector<bool> newton_pairing_pair;
       bool              pairing_exact = false; // see pairing_is_exact()
+      bool pairing_in_newton = false; // see pairing_within_newton()
       bool                any_node_status = false;
       // Normal status of the multiplier nodes of node-status pairs (key:
       // lambda DoF; the nodes of this rank's slave faces).

@@ -240,7 +240,6 @@ namespace Signorini
     // start time and the state at the last pairing.
     double                        pairing_step_start_time = 0;
     TrilinosWrappers::MPI::Vector state_at_pairing;
-    unsigned int                  newton_pairings = 0;
   };
 
   /** Reads @p filename, dispatches on Dimension and runs; used by main().
