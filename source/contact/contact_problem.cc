@@ -141,6 +141,10 @@ namespace Signorini
                               pair.friction == 0 &&
                               pair.master == MasterType::body &&
                               !newton_pairing_pair.back();
+          linear_statuses = (p == 0 || linear_statuses) && pair.friction == 0 &&
+                            ((pair.master == MasterType::body &&
+                              !newton_pairing_pair.back()) ||
+                             pair.master == MasterType::plane);
           if (pair.master == MasterType::body)
             {
               obstacles.emplace_back();

@@ -533,8 +533,12 @@ namespace Signorini
                       "this factor times the force norm that an iteration "
                       "no longer halves is accepted as converged, with a log "
                       "line. Large augmentation coefficients (rho_n = 1e6 "
-                      "E/h) put the floor above 'Relative tolerance'. 0: "
-                      "off.");
+                      "E/h) or stiffness contrasts put the floor above "
+                      "'Relative tolerance'. Equations linear at fixed "
+                      "statuses (frictionless pairs on meshed masters or "
+                      "rigid planes): a residual below it right after an "
+                      "exact step (direct solve, full update, statuses "
+                      "unchanged) is accepted at once. 0: off.");
     prm.declare_entry("Tolerance between pairings",
                       "1e-6",
                       Patterns::Double(0, 1),

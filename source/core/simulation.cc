@@ -702,8 +702,21 @@ namespace Signorini
                 << std::endl;
         if (ratio <= c.geometric_tolerance)
           {
-            // The pairing stays: finish the solve at 'Relative tolerance'.
-            if (handover > 0)
+            // The pairing stays: finish the solve at 'Relative tolerance',
+            // unless its last step was exact (linear equations at settled
+            // statuses, direct solve) and left a residual above it: a
+            // further solve would only stir the round-off.
+            const bool at_floor =
+              handover > 0 && exact_at_end &&
+              residual_at_end > parameters.newton.relative_tolerance;
+            if (at_floor)
+              pcout << "    residual " << std::scientific
+                    << std::setprecision(2) << residual_at_end
+                    << std::defaultfloat
+                    << " after an exact step of linear equations (round-off "
+                       "floor, below the stagnation tolerance): accepted"
+                    << std::endl;
+            if (handover > 0 && !at_floor)
               {
                 unsigned int more = 0;
                 const bool   done = newton(more);
@@ -884,6 +897,11 @@ namespace Signorini
       contact->active() && parameters.output.verbosity != Verbosity::quiet;
     double residual_before = 0;
     bool   settled_before = false;
+    // The iterate is the result of an exact Newton step: a direct solve,
+    // the full update, with the statuses of its evaluation (no early
+    // release, no frozen point released without a solve).
+    bool step_exact = false;
+    exact_at_end    = false;
     for (iterations = 0; iterations <= parameters.newton.max_iterations;
          ++iterations)
       {
@@ -961,15 +979,31 @@ namespace Signorini
           residual <= parameters.newton.stagnation_tolerance * force_scale;
         settled_before  = statuses_settled;
         residual_before = residual;
+        // Round-off floor of an exact step: equations linear at fixed
+        // statuses (contact->linear_at_fixed_statuses(); the bulk is
+        // linear elastic), solved exactly, and this iterate keeps the
+        // statuses of the solve: the update was the exact solution of
+        // these equations, and what is left of the residual is round-off.
+        // No further solve to see it stagnate.
+        const bool at_exact_floor =
+          step_exact && statuses_settled &&
+          (!contact->active() || contact->linear_at_fixed_statuses()) &&
+          residual <= parameters.newton.stagnation_tolerance * force_scale;
+        const bool below_tolerance =
+          small(block[0]) && small(block[1]) && small(block[2]);
         const bool residual_small =
-          (small(block[0]) && small(block[1]) && small(block[2])) ||
-          stagnated;
-        if (stagnated && !(small(block[0]) && small(block[1]) &&
-                           small(block[2])))
+          below_tolerance || stagnated || at_exact_floor;
+        if (stagnated && !below_tolerance)
           pcout << "    residual " << std::scientific << std::setprecision(2)
                 << residual / force_scale << std::defaultfloat
                 << " no longer decreases (round-off floor, below the "
                    "stagnation tolerance): accepted"
+                << std::endl;
+        else if (at_exact_floor && !below_tolerance)
+          pcout << "    residual " << std::scientific << std::setprecision(2)
+                << residual / force_scale << std::defaultfloat
+                << " after an exact step of linear equations (round-off "
+                   "floor, below the stagnation tolerance): accepted"
                 << std::endl;
         // A frozen point (anti-cycling) that the plain law contradicts at
         // the converged iterate is released; Newton goes on from there.
@@ -982,14 +1016,25 @@ namespace Signorini
         const auto relative = [&](const double r) {
           return force_scale > 0 ? r / force_scale : 0.;
         };
+        // Printed: above 1e6 the force level is the round-off of a
+        // stress-free state (a body moving freely before contact), and the
+        // digits of the ratio are round-off too.
+        const auto shown = [&](const double r) {
+          std::ostringstream text;
+          if (relative(r) > 1e6)
+            text << ">1.0e+06";
+          else
+            text << std::scientific << std::setprecision(2) << relative(r);
+          return text.str();
+        };
         if (show_contact)
           {
             const auto &st = contact_statistics;
             pcout << "    Newton " << std::setw(2) << iterations
-                  << ": |R_u| " << std::scientific << std::setprecision(2)
-                  << relative(block[0]) << " |R_lambda| " << relative(block[1]);
+                  << ": |R_u| " << shown(block[0]) << " |R_lambda| "
+                  << shown(block[1]);
             if (contact->n_friction_dofs() > 0)
-              pcout << " |R_Lambda| " << relative(block[2]);
+              pcout << " |R_Lambda| " << shown(block[2]);
             pcout << std::defaultfloat << "  contact " << st.n_contact;
             if (contact->n_friction_dofs() > 0)
               pcout << " (stick " << st.n_stick << ", slip " << st.n_slip
@@ -1032,9 +1077,14 @@ namespace Signorini
         if (parameters.newton.check_jacobian && contact->active())
           check_jacobian();
         if (converged)
-          return true;
+          {
+            exact_at_end      = at_exact_floor;
+            residual_at_end   = relative(residual);
+            return true;
+          }
         if (iterations == parameters.newton.max_iterations)
           break;
+        step_exact = false;
         if (release)
           {
             unsigned int       refrozen = 0;
@@ -1057,9 +1107,11 @@ namespace Signorini
 
         // Release extrapolation (a shrinking contact zone): the points
         // released early stay open for this solve only.
+        unsigned int n_early = 0;
         if (contact->active() && iterations >= 1)
           if (const unsigned int n = contact->extrapolate_releases(); n > 0)
             {
+              n_early = n;
               early_releases += n;
               if (show_contact)
                 pcout << "    release extrapolation: " << n
@@ -1081,6 +1133,7 @@ namespace Signorini
         owned.add(alpha, update);
         state = owned;
         update_solution();
+        step_exact = krylov == 0 && alpha == 1. && n_early == 0;
       }
     return false;
   }
@@ -2293,11 +2346,15 @@ namespace Signorini
       {
         // Newton iterations per load step (all geometric iterations and
         // cut attempts of the step that converged): median and maximum.
+        // (Median of an even count: the mean of the two middle values.)
         std::vector<unsigned int> sorted = step_iterations;
         std::sort(sorted.begin(), sorted.end());
+        const std::size_t  m   = sorted.size();
+        const unsigned int sum = sorted[(m - 1) / 2] + sorted[m / 2];
         sout << "Run summary: " << times.size()
               << " load steps, Newton iterations per step median "
-              << sorted[sorted.size() / 2] << ", max " << sorted.back()
+              << sum / 2 << (sum % 2 ? ".5" : "") << ", max "
+              << sorted.back()
               << ", step cuts " << run_cuts;
         if (contact->active())
           sout << ", status cycles detected " << run_cycles

@@ -117,6 +117,20 @@ namespace Signorini
       }
 
       /**
+       * True if the residual is linear in the unknowns once the statuses
+       * are fixed: every pair frictionless (no slip norm), on a meshed
+       * master paired at fixed points and normals, or on a rigid plane.
+       * A Newton step solved exactly (direct solver, full step) whose
+       * statuses the next iterate keeps then lands on the solution up to
+       * round-off.
+       */
+      bool
+      linear_at_fixed_statuses() const
+      {
+        return linear_statuses;
+      }
+
+      /**
        * Finds the slave and master surfaces, numbers the multipliers and
        * computes the coefficients. Needs the displacement constraints
        * (hanging nodes and Dirichlet) of the locally relevant DoFs to decide
@@ -650,6 +664,7 @@ namespace Signorini
       std::vector<bool> newton_pairing_pair;
       bool              pairing_exact = false; // see pairing_is_exact()
       bool pairing_in_newton = false; // see pairing_within_newton()
+      bool linear_statuses   = false; // see linear_at_fixed_statuses()
       bool                any_node_status = false;
       // Normal status of the multiplier nodes of node-status pairs (key:
       // lambda DoF; the nodes of this rank's slave faces).

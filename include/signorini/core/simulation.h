@@ -199,6 +199,10 @@ namespace Signorini
     double                        jacobian_error_max  = 0; // Check Jacobian
 
     double                           force_scale = 0;
+    // The last newton() call converged at the round-off floor of an exact
+    // step (see newton()).
+    bool   exact_at_end    = false;
+    double residual_at_end = 0; // its residual over the force level
     double model_size = 0; // bounding-box diagonal of the mesh [m]
     unsigned int maximum_level = 0; // adaptivity: finest level (0: not set)
     std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
