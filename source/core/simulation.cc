@@ -84,6 +84,21 @@ namespace Signorini
         << (std::abs(value) < 1e-300 ? 0. : value);
       return s.str();
     }
+
+    // The log line of a residual accepted at the round-off floor (Newton
+    // loop): @p relative over the force level, @p why the rule.
+    std::string
+    floor_line(const double relative, const char *why)
+    {
+      std::ostringstream s;
+      s << "    residual " << std::scientific << std::setprecision(2)
+        << relative << " " << why
+        << " (round-off floor, below the stagnation tolerance): accepted";
+      return s.str();
+    }
+    constexpr const char *stagnated_why = "no longer decreases";
+    constexpr const char *exact_why =
+      "after an exact step of linear equations";
   } // namespace
 
 
@@ -710,12 +725,7 @@ namespace Signorini
               handover > 0 && exact_at_end &&
               residual_at_end > parameters.newton.relative_tolerance;
             if (at_floor)
-              pcout << "    residual " << std::scientific
-                    << std::setprecision(2) << residual_at_end
-                    << std::defaultfloat
-                    << " after an exact step of linear equations (round-off "
-                       "floor, below the stagnation tolerance): accepted"
-                    << std::endl;
+              pcout << floor_line(residual_at_end, exact_why) << std::endl;
             if (handover > 0 && !at_floor)
               {
                 unsigned int more = 0;
@@ -993,17 +1003,9 @@ namespace Signorini
           small(block[0]) && small(block[1]) && small(block[2]);
         const bool residual_small =
           below_tolerance || stagnated || at_exact_floor;
-        if (stagnated && !below_tolerance)
-          pcout << "    residual " << std::scientific << std::setprecision(2)
-                << residual / force_scale << std::defaultfloat
-                << " no longer decreases (round-off floor, below the "
-                   "stagnation tolerance): accepted"
-                << std::endl;
-        else if (at_exact_floor && !below_tolerance)
-          pcout << "    residual " << std::scientific << std::setprecision(2)
-                << residual / force_scale << std::defaultfloat
-                << " after an exact step of linear equations (round-off "
-                   "floor, below the stagnation tolerance): accepted"
+        if ((stagnated || at_exact_floor) && !below_tolerance)
+          pcout << floor_line(residual / force_scale,
+                              stagnated ? stagnated_why : exact_why)
                 << std::endl;
         // A frozen point (anti-cycling) that the plain law contradicts at
         // the converged iterate is released; Newton goes on from there.
