@@ -134,17 +134,19 @@ namespace Signorini
           pairing_exact = (p == 0 || pairing_exact) &&
                           newton_geometry_pair.back() &&
                           !(contact.frozen_threshold && pair.friction > 0);
-          // Pairing at status changes: frictionless meshed masters with a
-          // point rule, pairing frozen within the Newton solve.
+          // A frictionless meshed master paired at fixed points and
+          // normals within each Newton solve.
+          const bool frictionless_fixed_body =
+            pair.friction == 0 && pair.master == MasterType::body &&
+            !newton_pairing_pair.back();
+          // Pairing at status changes: those pairs, with a point rule.
           pairing_in_newton = (p == 0 || pairing_in_newton) &&
                               contact.pairing_at_status_changes && !mortar &&
-                              pair.friction == 0 &&
-                              pair.master == MasterType::body &&
-                              !newton_pairing_pair.back();
-          linear_statuses = (p == 0 || linear_statuses) && pair.friction == 0 &&
-                            ((pair.master == MasterType::body &&
-                              !newton_pairing_pair.back()) ||
-                             pair.master == MasterType::plane);
+                              frictionless_fixed_body;
+          linear_statuses =
+            (p == 0 || linear_statuses) &&
+            (frictionless_fixed_body ||
+             (pair.friction == 0 && pair.master == MasterType::plane));
           if (pair.master == MasterType::body)
             {
               obstacles.emplace_back();
