@@ -550,7 +550,7 @@ namespace Signorini
                       "ends at 'Relative tolerance'. 0: every solve to "
                       "'Relative tolerance'.");
     prm.declare_entry("Line search steps",
-                      "0",
+                      "2",
                       Patterns::Integer(0, 20),
                       "Backtracking line search on the residual norm: when "
                       "the full Newton update makes the residual grow, try "
@@ -558,8 +558,10 @@ namespace Signorini
                       "the first that decreases the residual (if none does: "
                       "the one with the smallest residual; the full update if "
                       "no fraction beats it). Statuses follow each trial. "
-                      "0: full updates (one residual evaluation per "
-                      "iteration less).");
+                      "The evaluation of the next iterate is the trial of "
+                      "the full update, so an update that decreases the "
+                      "residual costs nothing extra. 0: full updates "
+                      "always.");
     prm.leave_subsection();
   }
 

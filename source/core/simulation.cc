@@ -911,6 +911,11 @@ namespace Signorini
     // the full update, with the statuses of its evaluation (no early
     // release, no frozen point released without a solve).
     bool step_exact = false;
+    // Line search: the last solve's base, update and residual, tried at
+    // the next evaluation.
+    bool                          line_search_pending = false;
+    TrilinosWrappers::MPI::Vector search_base, search_update;
+    double                        search_residual = 0;
     exact_at_end    = false;
     for (iterations = 0; iterations <= parameters.newton.max_iterations;
          ++iterations)
@@ -932,9 +937,37 @@ namespace Signorini
         // last solve stay the reference of the status history).
         const bool pair_here = contact->active() && iterations >= 1 &&
                                contact->pairing_within_newton();
+        // Line search (Newton/Line search steps): the full update of the
+        // last solve is this iterate. Its evaluation is the trial of the
+        // full step, so an accepted full step costs no extra assembly;
+        // when it made the residual grow, the evaluation is undone and
+        // the fractions are tried (line_search()).
+        const bool search = line_search_pending;
+        line_search_pending = false;
         const auto saved_points =
-          pair_here ? contact->save_points() : nullptr;
+          pair_here || search ? contact->save_points() : nullptr;
         assemble(false);
+        if (search)
+          {
+            const auto   b      = block_residuals();
+            const double r_full = std::sqrt(b[0] * b[0] + b[1] * b[1] +
+                                            b[2] * b[2]);
+            if (r_full > (1 - 1e-4) * search_residual)
+              {
+                contact->restore_points(*saved_points);
+                const double alpha = line_search(search_base,
+                                                 search_update,
+                                                 search_residual,
+                                                 r_full);
+                if (alpha < 1)
+                  step_exact = false;
+                TrilinosWrappers::MPI::Vector owned = search_base;
+                owned.add(alpha, search_update);
+                state = owned;
+                update_solution();
+                assemble(false);
+              }
+          }
         bool paired_here = false;
         if (pair_here && contact_statistics.n_changed > 0)
           {
@@ -1131,11 +1164,17 @@ namespace Signorini
         constraints_update.distribute(update);
         TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
         owned = state;
-        const double alpha = line_search(owned, update, residual);
-        owned.add(alpha, update);
+        if (parameters.newton.line_search_steps > 0 && contact->active())
+          {
+            line_search_pending = true;
+            search_base         = owned;
+            search_update       = update;
+            search_residual     = residual;
+          }
+        owned.add(1., update);
         state = owned;
         update_solution();
-        step_exact = krylov == 0 && alpha == 1. && n_early == 0;
+        step_exact = krylov == 0 && n_early == 0;
       }
     return false;
   }
@@ -1158,26 +1197,27 @@ namespace Signorini
   }
 
 
-  // Backtracking on the residual norm (Newton/Line search steps): the full
-  // update first; while the residual grows, halve it. Each trial is a
-  // residual evaluation with its own statuses, outside the status history;
-  // the caller adds the returned fraction of the update to @p base.
+  // Backtracking on the residual norm (Newton/Line search steps): the
+  // full update made the residual grow from @p residual_now to
+  // @p residual_full; try 1/2, 1/4, ... of it and return the first fraction
+  // that decreases the residual, else the one with the smallest residual
+  // (1 if no fraction beats the full update). Each trial is a residual
+  // evaluation with its own statuses, outside the status history; the
+  // contact points are left as they were on entry.
   template <int dim>
   double
   Simulation<dim>::line_search(const TrilinosWrappers::MPI::Vector &base,
                                const TrilinosWrappers::MPI::Vector &update,
-                               const double residual_now)
+                               const double residual_now,
+                               const double residual_full)
   {
-    const unsigned int n_steps = parameters.newton.line_search_steps;
-    if (n_steps == 0)
-      return 1.;
     TimerOutput::Scope t(timer, "line search");
-    const auto saved = contact->active() ? contact->save_points() : nullptr;
-    const auto saved_statistics = contact_statistics;
-    double     best = std::numeric_limits<double>::max(), best_alpha = 1,
-           alpha = 1, full = 0;
-    for (unsigned int k = 0; k <= n_steps; ++k, alpha *= 0.5)
+    const auto   saved            = contact->save_points();
+    const auto   saved_statistics = contact_statistics;
+    double       best = residual_full, best_alpha = 1, alpha = 1;
+    for (unsigned int k = 1; k <= parameters.newton.line_search_steps; ++k)
       {
+        alpha *= 0.5;
         TrilinosWrappers::MPI::Vector trial = base;
         trial.add(alpha, update);
         state = trial;
@@ -1185,8 +1225,6 @@ namespace Signorini
         assemble(false, true);
         const auto   b = block_residuals();
         const double r = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-        if (k == 0)
-          full = r;
         if (r < best)
           {
             best       = r;
@@ -1195,8 +1233,7 @@ namespace Signorini
         if (r <= (1 - 1e-4 * alpha) * residual_now)
           break;
       }
-    if (saved)
-      contact->restore_points(*saved);
+    contact->restore_points(*saved);
     contact_statistics = saved_statistics;
     if (best_alpha < 1)
       {
@@ -1204,8 +1241,8 @@ namespace Signorini
         if (parameters.output.verbosity != Verbosity::quiet)
           pcout << "    line search: " << best_alpha
                 << " of the update (residual " << std::scientific
-                << std::setprecision(2) << full / residual_now << " -> "
-                << best / residual_now << " of the current)"
+                << std::setprecision(2) << residual_full / residual_now
+                << " -> " << best / residual_now << " of the current)"
                 << std::defaultfloat << std::endl;
       }
     return best_alpha;
@@ -2365,7 +2402,7 @@ namespace Signorini
         if (early_releases > 0)
           sout << ", opened early (release extrapolation) "
                << early_releases;
-        if (parameters.newton.line_search_steps > 0)
+        if (run_line_searches > 0)
           sout << ", line searches " << run_line_searches;
         sout << std::endl;
       }

@@ -118,7 +118,8 @@ namespace Signorini
     double
     line_search(const TrilinosWrappers::MPI::Vector &base,
                 const TrilinosWrappers::MPI::Vector &update,
-                const double                         residual_now);
+                const double                         residual_now,
+                const double                         residual_full);
     void
     check_jacobian();
     void
