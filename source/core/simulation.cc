@@ -99,6 +99,14 @@ namespace Signorini
     constexpr const char *stagnated_why = "no longer decreases";
     constexpr const char *exact_why =
       "after an exact step of linear equations";
+
+    // The residual norm from its three block norms (u, lambda, Lambda).
+    double
+    norm_of(const std::array<double, 3> &block)
+    {
+      return std::sqrt(block[0] * block[0] + block[1] * block[1] +
+                       block[2] * block[2]);
+    }
   } // namespace
 
 
@@ -949,9 +957,7 @@ namespace Signorini
         assemble(false);
         if (search)
           {
-            const auto   b      = block_residuals();
-            const double r_full = std::sqrt(b[0] * b[0] + b[1] * b[1] +
-                                            b[2] * b[2]);
+            const double r_full = norm_of(block_residuals());
             if (r_full > (1 - 1e-4) * search_residual)
               {
                 contact->restore_points(*saved_points);
@@ -985,9 +991,7 @@ namespace Signorini
             paired_here      = true;
           }
         const auto   block = block_residuals();
-        const double residual =
-          std::sqrt(block[0] * block[0] + block[1] * block[1] +
-                    block[2] * block[2]);
+        const double residual = norm_of(block);
         // The force level of the load step so far: the largest internal
         // and external force of its iterates. Not the residual: its
         // multiplier rows (scaled by rho_n) hold rho_n times the initial
@@ -1223,8 +1227,7 @@ namespace Signorini
         state = trial;
         update_solution();
         assemble(false, true);
-        const auto   b = block_residuals();
-        const double r = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        const double r = norm_of(block_residuals());
         if (r < best)
           {
             best       = r;
