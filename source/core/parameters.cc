@@ -1300,6 +1300,18 @@ namespace Signorini
                       "1",
                       Patterns::Integer(1, 3),
                       "Polynomial degree of the displacement (1: Q1, 2: Q2).");
+    prm.declare_entry(
+      "Volumetric strain",
+      "full",
+      Patterns::Selection("full|projected"),
+      "Volumetric strain theta = tr(eps) in the term lambda theta^2 of the "
+      "bulk energy: full (pointwise) or projected (B-bar: in each cell the "
+      "L2 projection of theta onto polynomials of one degree less, a "
+      "constant for Q1, the mean dilatation). Pure-displacement elements "
+      "lock as nu -> 0.5 (B2 Hertz at nu = 0.4999: p0 32 % high in 2D, 2.5 "
+      "times Hertz in 3D); projected removes the locking (0.5 % and 3 %, "
+      "doc/robustness.md). The stresses written and checked take their "
+      "volumetric part from the projection, as the equilibrium does.");
     prm.leave_subsection();
     GeometryParameters::declare_parameters(prm, counts);
     prm.enter_subsection("Materials");
@@ -1332,6 +1344,8 @@ namespace Signorini
     axisymmetric = prm.get_bool("Axisymmetric");
     prm.enter_subsection("Finite element");
     fe_degree = prm.get_integer("Degree");
+    projected_volumetric_strain =
+      prm.get("Volumetric strain") == "projected";
     prm.leave_subsection();
     geometry.parse_parameters(prm, counts);
     prm.enter_subsection("Materials");

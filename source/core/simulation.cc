@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <signorini/geometry/scene.h>
+#include <signorini/material/projected_volumetric_strain.h>
 #include <signorini/postprocess/stress_postprocessor.h>
 
 #include <cmath>
@@ -463,6 +464,12 @@ namespace Signorini
                                        update_normal_vectors |
                                        update_JxW_values);
     const FEValuesExtractors::Vector displacement(0);
+    // B-bar (Volumetric strain = projected): the lambda term from the
+    // volumetric strain projected in each cell.
+    const bool projected = parameters.projected_volumetric_strain;
+    Material::ProjectedVolumetricStrain<dim> projection(
+      fe, quadrature, parameters.axisymmetric);
+    Vector<double> local_u(fe.n_dofs_per_cell()), theta_bar;
 
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> cell_matrix(n, n);
@@ -488,6 +495,8 @@ namespace Signorini
                                                                    strains);
           if (axisymmetric)
             fe_values[displacement].get_function_values(solution, u_values);
+          if (projected)
+            projection.start_cell();
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const Point<dim> &x = fe_values.quadrature_point(q);
@@ -502,11 +511,16 @@ namespace Signorini
               // axisymmetric model eps has a fourth component, the hoop
               // strain u_r / r, which enters the trace and the work; it is
               // zero in plane strain and 3D.
-              const double lambda = material.lambda, mu = material.mu;
+              // Projected: the lambda term is added per cell below.
+              const double lambda = projected ? 0. : material.lambda;
+              const double mu     = material.mu;
               const double hoop = axisymmetric ? u_values[q][0] / x[0] : 0.;
+              const double volumetric =
+                projected ? 0. : trace(strains[q]) + hoop;
               const SymmetricTensor<2, dim> stress =
-                material.stress(strains[q], hoop);
-              const double stress_hoop = material.stress_33(strains[q], hoop);
+                material.stress_from_volumetric(strains[q], volumetric);
+              const double stress_hoop =
+                material.stress_33_from_volumetric(hoop, volumetric);
               for (unsigned int i = 0; i < n; ++i)
                 {
                   const unsigned int comp =
@@ -520,6 +534,8 @@ namespace Signorini
                   cell_fext(i) +=
                     force_values(comp) * fe_values.shape_value(i, q) * JxW;
                 }
+              if (projected)
+                projection.add_point(q, JxW, trace_i);
               if (with_matrix)
                 for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)
@@ -528,6 +544,16 @@ namespace Signorini
                        2 * mu *
                          (sym_grad[i] * sym_grad[j] + hoop_i[i] * hoop_i[j])) *
                       JxW;
+            }
+          if (projected)
+            {
+              projection.finish_cell();
+              cell->get_dof_values(solution, local_u);
+              projection.coefficients(local_u, theta_bar);
+              projection.add_cell_terms(material.lambda,
+                                        theta_bar,
+                                        cell_fint,
+                                        with_matrix ? &cell_matrix : nullptr);
             }
 
           for (const unsigned int f : cell->face_indices())
@@ -1473,6 +1499,11 @@ namespace Signorini
     if (s_exact)
       s_exact->set_time(time);
 
+    // Projected volumetric strain: the stress with theta_bar.
+    Material::ProjectedVolumetricStrain<dim> projection(
+      fe, quadrature, parameters.axisymmetric);
+    Vector<double> local_u(fe.n_dofs_per_cell()), theta_bar;
+
     double u_err2 = 0, u_norm2 = 0, s_err_max = 0, s_norm_max = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -1481,6 +1512,12 @@ namespace Signorini
           fe_values[displacement].get_function_values(solution, u_h);
           fe_values[displacement].get_function_symmetric_gradients(solution,
                                                                    eps_h);
+          if (s_exact && parameters.projected_volumetric_strain)
+            {
+              projection.reinit(fe_values);
+              cell->get_dof_values(solution, local_u);
+              projection.coefficients(local_u, theta_bar);
+            }
           const auto &material = materials.at(cell->material_id());
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
@@ -1495,8 +1532,14 @@ namespace Signorini
               if (s_exact)
                 {
                   // Axisymmetric: the hoop strain u_r / r enters the trace.
-                  const SymmetricTensor<2, dim> s = material.stress(
-                    eps_h[q], parameters.axisymmetric ? u_h[q][0] / x[0] : 0.);
+                  const double hoop =
+                    parameters.axisymmetric ? u_h[q][0] / x[0] : 0.;
+                  const SymmetricTensor<2, dim> s =
+                    parameters.projected_volumetric_strain ?
+                      material.stress_from_volumetric(
+                        eps_h[q],
+                        projection.value(theta_bar, quadrature.point(q))) :
+                      material.stress(eps_h[q], hoop);
                   double                        e2 = 0, n2 = 0;
                   for (unsigned int i = 0; i < dim; ++i)
                     for (unsigned int j = 0; j < dim; ++j)
@@ -2010,8 +2053,11 @@ namespace Signorini
                              std::vector<std::string>(dim, "displacement"),
                              DataOut<dim>::type_dof_data,
                              interpretation);
-    Postprocess::StressPostprocessor<dim> stress(materials,
-                                                 parameters.axisymmetric);
+    Postprocess::StressPostprocessor<dim> stress(
+      materials,
+      parameters.axisymmetric,
+      parameters.projected_volumetric_strain ? &fe : nullptr,
+      &solution);
     data_out.add_data_vector(solution, stress);
     Vector<float> material_id(triangulation.n_active_cells());
     Vector<float> subdomain(triangulation.n_active_cells());
@@ -2136,11 +2182,23 @@ namespace Signorini
             << " status cycle(s) detected, " << points_frozen
             << " point(s) frozen, " << points_released << " released\n";
     pcout << "  max |u_i| = " << format(u_max) << "\n";
+    // Components below 1e-10 of the largest reaction are round-off (sums of
+    // nodal forces that cancel; with nu -> 0.5 lambda amplifies the
+    // round-off of the displacement) and are printed as 0 (the CSV keeps
+    // them).
+    double largest_reaction = 0;
+    for (const auto &r : reactions)
+      largest_reaction = std::max(largest_reaction, r.norm());
     for (unsigned int k = 0; k < reactions.size(); ++k)
       {
         pcout << "  reaction Dirichlet " << k + 1 << " = (";
         for (unsigned int d = 0; d < dim; ++d)
-          pcout << (d ? ", " : "") << format(reactions[k][d], 4);
+          pcout << (d ? ", " : "")
+                << format(std::abs(reactions[k][d]) <
+                              1e-10 * largest_reaction ?
+                            0. :
+                            reactions[k][d],
+                          4);
         pcout << ")\n";
       }
     const auto &ref = parameters.reference;
@@ -2218,6 +2276,18 @@ namespace Signorini
           << triangulation.n_global_active_cells() << " cells, "
           << dof_handler.n_dofs() << " displacement DoFs, "
           << parameters.geometry.bodies.size() << " body(ies)" << std::endl;
+    if (parameters.projected_volumetric_strain)
+      pcout << "Volumetric strain projected onto Q" << fe.degree - 1
+            << " in each cell (B-bar)" << std::endl;
+    else
+      for (const auto &m : parameters.materials)
+        if (m.poissons_ratio >= 0.45)
+          pcout << "Note: material " << m.material_id
+                << " has Poisson's ratio " << m.poissons_ratio
+                << ": pure-displacement elements lock as nu -> 0.5 (contact "
+                   "pressures too high); set 'Finite element/Volumetric "
+                   "strain = projected'"
+                << std::endl;
     if (contact->active())
       pcout << "DoFs per block: u " << dof_handler.n_dofs() << ", lambda "
             << contact->n_lambda_dofs() << ", Lambda "

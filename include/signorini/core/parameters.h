@@ -341,6 +341,7 @@ namespace Signorini
     unsigned int                dimension;
     bool                        axisymmetric; // 2D: x = r, y = z
     unsigned int                fe_degree;
+    bool projected_volumetric_strain; // B-bar: theta projected per cell
     GeometryParameters          geometry;
     std::vector<MaterialParameters> materials;
     BoundaryConditionParameters boundary_conditions;

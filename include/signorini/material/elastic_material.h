@@ -58,7 +58,28 @@ namespace Signorini
         return lambda * (trace(strain) + strain_33) + 2 * mu * strain_33;
       }
 
-      /** von Mises stress, in 2D including the stress normal to the plane. */
+      /** stress() with the volumetric strain @p volumetric in place of
+       * tr(eps) + strain_33 (B-bar: the volumetric strain projected per
+       * cell, Material::ProjectedVolumetricStrain). */
+      SymmetricTensor<2, dim>
+      stress_from_volumetric(const SymmetricTensor<2, dim> &strain,
+                             const double                   volumetric) const
+      {
+        return lambda * volumetric * unit_symmetric_tensor<dim>() +
+               2 * mu * strain;
+      }
+
+      /** stress_33() with the volumetric strain @p volumetric. */
+      double
+      stress_33_from_volumetric(const double strain_33,
+                                const double volumetric) const
+      {
+        return lambda * volumetric + 2 * mu * strain_33;
+      }
+
+      /** von Mises stress, in 2D including the stress normal to the plane
+       * (independent of the volumetric strain: lambda tr(eps) shifts the
+       * three normal stresses alike). */
       double
       von_mises(const SymmetricTensor<2, dim> &strain,
                 const double                   strain_33 = 0) const

@@ -1,16 +1,23 @@
 #ifndef signorini_postprocess_stress_postprocessor_h
 #define signorini_postprocess_stress_postprocessor_h
 
+#include <deal.II/fe/mapping_q1.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <signorini/material/elastic_material.h>
+#include <signorini/material/projected_volumetric_strain.h>
 
 #include <map>
 
 /**
  * Cauchy stress components [Pa] and the von Mises stress for DataOut, from
  * the displacement gradient and the material of each cell (by material id).
- * In 2D (plane strain) stress_zz is written too.
+ * In 2D (plane strain) stress_zz is written too. With the projected
+ * volumetric strain (B-bar) the volumetric part is lambda theta_bar
+ * (Material::ProjectedVolumetricStrain), as in the equilibrium.
  */
 namespace Signorini
 {
@@ -22,20 +29,29 @@ namespace Signorini
     class StressPostprocessor : public DataPostprocessor<dim>
     {
     public:
-      /** @p axisymmetric: 2D meridian section, x = r (hoop strain u_r/r). */
+      /** @p axisymmetric: 2D meridian section, x = r (hoop strain u_r/r).
+       * @p projected (the displacement element, with the ghosted
+       * @p solution that DataOut writes): the volumetric strain projected
+       * per cell (B-bar). */
       StressPostprocessor(
         const std::map<types::material_id, Material::ElasticMaterial<dim>>
-          &        materials,
-        const bool axisymmetric = false)
-        : materials(materials)
-        , axisymmetric(axisymmetric)
-      {}
+                                            &materials,
+        const bool                           axisymmetric = false,
+        const FiniteElement<dim>            *projected    = nullptr,
+        const TrilinosWrappers::MPI::Vector *solution     = nullptr)
+          : materials(materials)
+          , axisymmetric(axisymmetric)
+          , projected(projected)
+          , solution(solution)
+      {
+        Assert(!projected || solution, ExcInternalError());
+      }
 
       std::vector<std::string>
       get_names() const override
       {
         std::vector<std::string> names;
-        const char *axis[] = {"x", "y", "z"};
+        const char              *axis[] = {"x", "y", "z"};
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
             names.push_back(std::string("stress_") + axis[i] + axis[j]);
@@ -56,7 +72,7 @@ namespace Signorini
       UpdateFlags
       get_needed_update_flags() const override
       {
-        return axisymmetric ?
+        return axisymmetric || projected ?
                  update_gradients | update_values | update_quadrature_points :
                  update_gradients;
       }
@@ -64,40 +80,70 @@ namespace Signorini
       void
       evaluate_vector_field(
         const DataPostprocessorInputs::Vector<dim> &inputs,
-        std::vector<Vector<double>> &computed) const override
+        std::vector<Vector<double>>                &computed) const override
       {
-        const auto  cell = inputs.template get_cell<dim>();
-        const auto &material = materials.at(cell->material_id());
+        const auto          cell     = inputs.template get_cell<dim>();
+        const auto         &material = materials.at(cell->material_id());
+        std::vector<double> volumetric(computed.size());
+        if (projected)
+        {
+          const QGauss<dim> quadrature(projected->degree + 1);
+          FEValues<dim>     fe_values(*projected,
+                                  quadrature,
+                                  update_values | update_gradients |
+                                    update_quadrature_points |
+                                    update_JxW_values);
+          fe_values.reinit(cell);
+          Material::ProjectedVolumetricStrain<dim> projection(*projected,
+                                                              quadrature,
+                                                              axisymmetric);
+          projection.reinit(fe_values);
+          Vector<double> local_u(projected->n_dofs_per_cell()), theta_bar;
+          cell->get_dof_values(*solution, local_u);
+          projection.coefficients(local_u, theta_bar);
+          for (unsigned int q = 0; q < computed.size(); ++q)
+            volumetric[q] =
+              projection.value(theta_bar,
+                               mapping.transform_real_to_unit_cell(
+                                 cell, inputs.evaluation_points[q]));
+        }
         for (unsigned int q = 0; q < computed.size(); ++q)
-          {
-            SymmetricTensor<2, dim> strain;
-            for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int j = i; j < dim; ++j)
-                strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
-                                      inputs.solution_gradients[q][j][i]);
-            // Hoop strain u_r / r; on the axis its limit du_r/dr.
-            const double r    = inputs.evaluation_points.empty() ?
-                                  0. :
-                                  inputs.evaluation_points[q][0];
-            const double hoop = !axisymmetric ? 0. :
-                                r > 0 ? inputs.solution_values[q][0] / r :
-                                        inputs.solution_gradients[q][0][0];
-            const SymmetricTensor<2, dim> stress =
-              material.stress(strain, hoop);
-            unsigned int                  k      = 0;
-            for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int j = i; j < dim; ++j)
-                computed[q][k++] = stress[i][j];
-            if (dim == 2)
-              computed[q][k++] = material.stress_33(strain, hoop);
-            computed[q][k] = material.von_mises(strain, hoop);
-          }
+        {
+          SymmetricTensor<2, dim> strain;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = i; j < dim; ++j)
+              strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
+                                    inputs.solution_gradients[q][j][i]);
+          // Hoop strain u_r / r; on the axis its limit du_r/dr.
+          const double                  r = inputs.evaluation_points.empty() ?
+                                              0. :
+                                              inputs.evaluation_points[q][0];
+          const double                  hoop = !axisymmetric ? 0. :
+                                               r > 0 ? inputs.solution_values[q][0] / r :
+                                                       inputs.solution_gradients[q][0][0];
+          const SymmetricTensor<2, dim> stress =
+            projected ? material.stress_from_volumetric(strain, volumetric[q]) :
+                        material.stress(strain, hoop);
+          unsigned int k = 0;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = i; j < dim; ++j)
+              computed[q][k++] = stress[i][j];
+          if (dim == 2)
+            computed[q][k++] =
+              projected ?
+                material.stress_33_from_volumetric(hoop, volumetric[q]) :
+                material.stress_33(strain, hoop);
+          computed[q][k] = material.von_mises(strain, hoop);
+        }
       }
 
     private:
       const std::map<types::material_id, Material::ElasticMaterial<dim>>
-        &        materials;
-      const bool axisymmetric;
+                                          &materials;
+      const bool                           axisymmetric;
+      const FiniteElement<dim>            *projected;
+      const TrilinosWrappers::MPI::Vector *solution;
+      const MappingQ1<dim>                 mapping;
     };
   } // namespace Postprocess
 } // namespace Signorini

@@ -1,0 +1,176 @@
+#ifndef signorini_material_projected_volumetric_strain_h
+#define signorini_material_projected_volumetric_strain_h
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_dgq.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <vector>
+
+/**
+ * B-bar against volumetric locking (`Finite element/Volumetric strain =
+ * projected`): in the volumetric term lambda tr(eps) tr(eps) of the bulk
+ * stiffness, the volumetric strain theta = tr(eps) (plus the hoop strain
+ * u_r / r of an axisymmetric model) is replaced in each cell by its L2
+ * projection theta_bar onto the polynomials of one degree less in the unit
+ * cell (a constant for Q1, the mean dilatation; Q1 in each unit coordinate
+ * for Q2), with the weight of the cell's volume (2 pi r dA axisymmetric):
+ *
+ *   M_ab = int phi_a phi_b,   G_ai = int phi_a theta(N_i),
+ *   theta_bar(u) = phi^T M^-1 G u,
+ *   K_vol = lambda G^T M^-1 G,   F_vol = lambda G^T M^-1 G u.
+ *
+ * On affine cells in plane strain and 3D this is selective reduced
+ * integration of the volumetric term; unlike it, the projection keeps the
+ * constant-stress patch test of an axisymmetric model. The stresses written
+ * and checked take their volumetric part from theta_bar, as the equilibrium
+ * does (the pointwise lambda tr(eps) of a nearly incompressible body is
+ * lambda times a small, oscillating error).
+ */
+namespace Signorini
+{
+  namespace Material
+  {
+    using namespace dealii;
+
+    template <int dim>
+    class ProjectedVolumetricStrain
+    {
+    public:
+      /** @p quadrature: the rule of the FEValues given to reinit().
+       * @p axisymmetric: x = r, the hoop strain enters theta and the weight
+       * 2 pi r the integrals. */
+      ProjectedVolumetricStrain(const FiniteElement<dim> &fe,
+                                const Quadrature<dim>    &quadrature,
+                                const bool                axisymmetric)
+          : fe(fe)
+          , quadrature(quadrature)
+          , basis(fe.degree - 1)
+          , axisymmetric(axisymmetric)
+          , n_basis(basis.n_dofs_per_cell())
+          , phi(n_basis, quadrature.size())
+          , M(n_basis, n_basis)
+          , M_inv(n_basis, n_basis)
+          , G(n_basis, fe.n_dofs_per_cell())
+          , M_inv_G(n_basis, fe.n_dofs_per_cell())
+      {
+        for (unsigned int a = 0; a < n_basis; ++a)
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            phi(a, q) = basis.shape_value(a, quadrature.point(q));
+      }
+
+      /** M, G and M^-1 G of the cell of @p fe_values (values, gradients,
+       * quadrature points and JxW on the rule given to the constructor). */
+      void
+      reinit(const FEValues<dim> &fe_values)
+      {
+        const FEValuesExtractors::Vector displacement(0);
+        std::vector<double>              theta(fe.n_dofs_per_cell());
+        start_cell();
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          const double r = fe_values.quadrature_point(q)[0];
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          {
+            theta[i] = fe_values[displacement].divergence(i, q);
+            if (axisymmetric && fe.system_to_component_index(i).first == 0)
+              theta[i] += fe_values.shape_value(i, q) / r;
+          }
+          add_point(q,
+                    fe_values.JxW(q) *
+                      (axisymmetric ? 2 * numbers::PI * r : 1.),
+                    theta);
+        }
+        finish_cell();
+      }
+
+      /** The same in three parts, for an assembly loop that has theta(N_i)
+       * at hand: start_cell(), add_point() at every point q of the rule
+       * with its volume dV, finish_cell(). */
+      void
+      start_cell()
+      {
+        M = 0;
+        G = 0;
+      }
+
+      void
+      add_point(const unsigned int         q,
+                const double               dV,
+                const std::vector<double> &theta)
+      {
+        for (unsigned int a = 0; a < n_basis; ++a)
+        {
+          const double phi_dV = phi(a, q) * dV;
+          for (unsigned int b = 0; b < n_basis; ++b)
+            M(a, b) += phi_dV * phi(b, q);
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            G(a, i) += phi_dV * theta[i];
+        }
+      }
+
+      void
+      finish_cell()
+      {
+        M_inv.invert(M);
+        M_inv.mmult(M_inv_G, G);
+      }
+
+      /** Coefficients of theta_bar for the cell's DoF values @p u. */
+      void
+      coefficients(const Vector<double> &u, Vector<double> &theta) const
+      {
+        theta.reinit(n_basis);
+        M_inv_G.vmult(theta, u);
+      }
+
+      /** theta_bar at a unit point, from its coefficients. */
+      double
+      value(const Vector<double> &theta, const Point<dim> &unit_point) const
+      {
+        double v = 0;
+        for (unsigned int a = 0; a < n_basis; ++a)
+          v += theta[a] * basis.shape_value(a, unit_point);
+        return v;
+      }
+
+      /** Adds lambda G^T theta to @p f_int and lambda G^T M^-1 G to
+       * @p matrix (if given). */
+      void
+      add_cell_terms(const double          lambda,
+                     const Vector<double> &theta,
+                     Vector<double>       &f_int,
+                     FullMatrix<double>   *matrix) const
+      {
+        const unsigned int n = fe.n_dofs_per_cell();
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int a = 0; a < n_basis; ++a)
+            f_int(i) += lambda * G(a, i) * theta[a];
+        if (matrix)
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = 0; j < n; ++j)
+            {
+              double k = 0;
+              for (unsigned int a = 0; a < n_basis; ++a)
+                k += G(a, i) * M_inv_G(a, j);
+              (*matrix)(i, j) += lambda * k;
+            }
+      }
+
+    private:
+      const FiniteElement<dim> &fe;
+      const Quadrature<dim>     quadrature;
+      const FE_DGQ<dim>         basis; // polynomials of one degree less
+      const bool                axisymmetric;
+      const unsigned int        n_basis;
+      FullMatrix<double>        phi; // basis at the points of the rule
+      FullMatrix<double>        M, M_inv, G, M_inv_G;
+    };
+  } // namespace Material
+} // namespace Signorini
+
+#endif
