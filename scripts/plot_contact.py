@@ -1,5 +1,6 @@
 """Contact pressure of the Hertz benchmarks against the Hertz solution, the
-Newton convergence history of the benchmark runs, and force-displacement
+Newton convergence history of the benchmark runs, B2 at nu = 0.4999 with and
+without the projected volumetric strain, and force-displacement
 curves (Cattaneo-Mindlin load cycle, B4 ironing) from statistics.csv.
 
 Usage: plot_contact.py RUN_DIRECTORY FIGURE_DIRECTORY
@@ -219,9 +220,41 @@ def plot_ironing_forces(runs, figures):
     print("wrote", out)
 
 
+def plot_locking(runs, figures):
+    """B2 with nu = 0.4999 (prm/b2_hertz_2d_incompressible.prm): contact
+    pressure with the projected (B-bar) and the pointwise volumetric strain
+    against Hertz."""
+    p0, a = 3.9489e9, 5.6425e-3
+    runs_here = {"projected": "projected volumetric strain (B-bar)",
+                 "full": "pointwise volumetric strain (locks)"}
+    if not all((runs / f"b2_incompressible_{k}").exists() for k in runs_here):
+        return
+    fig, ax = plt.subplots(figsize=(6, 4))
+    r_exact = [2.5 * a * 1e3 * i / 400 for i in range(401)]
+    ax.plot(r_exact, [p0 / 1e6 * math.sqrt(max(0.0, 1 - (r / (a * 1e3)) ** 2))
+                      for r in r_exact], "k-", label="Hertz")
+    for (key, label), marker in zip(runs_here.items(), ["o", "s"]):
+        rows = last_csv(runs / f"b2_incompressible_{key}")
+        points = sorted({(abs(r["x"]) * 1e3, r["p"] / 1e6) for r in rows
+                         if abs(r["x"]) < 2.5 * a})
+        ax.plot([q[0] for q in points], [q[1] for q in points], marker,
+                ms=4, mfc="white" if key == "full" else None, label=label)
+    ax.set_xlabel("distance from the first contact point [mm]")
+    ax.set_ylabel("contact pressure p [MPa]")
+    ax.set_title("B2 Hertz 2D, nu = 0.4999, Q1 (mortar rule)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    out = figures / "b2_incompressible_pressure.png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print("wrote", out)
+
+
 if __name__ == "__main__":
     main()
     plot_newton_history(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_hysteresis(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_mindlin_traction(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_ironing_forces(Path(sys.argv[1]), Path(sys.argv[2]))
+    plot_locking(Path(sys.argv[1]), Path(sys.argv[2]))

@@ -328,6 +328,8 @@ namespace Signorini
     if (contact->active())
       contact->add_sparsity(sp, constraints_update);
     sp.compress();
+    // The direct solver's analysis refers to the old matrix: dropped first.
+    linear_solver->pattern_changed();
     system_matrix.reinit(sp);
   }
 

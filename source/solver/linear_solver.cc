@@ -8,7 +8,10 @@
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 #include <signorini/solver/linear_solver.h>
@@ -288,6 +291,71 @@ namespace Signorini
 
 
     template <int dim>
+    void
+    LinearSolver<dim>::pattern_changed()
+    {
+      direct_solver.reset();
+      direct_problem.reset();
+      analysed_matrix = nullptr;
+    }
+
+
+    // Amesos directly (TrilinosWrappers::SolverDirect analyses the matrix at
+    // every solve): the analysis once per pattern, the numeric
+    // factorisation of the current values at every solve.
+    template <int dim>
+    void
+    LinearSolver<dim>::solve_direct(const TrilinosWrappers::SparseMatrix &A,
+                                    TrilinosWrappers::MPI::Vector &       x,
+                                    const TrilinosWrappers::MPI::Vector &b)
+    {
+      const auto analyse = [&]() {
+        pattern_changed();
+        direct_problem = std::make_unique<Epetra_LinearProblem>();
+        direct_problem->SetOperator(
+          const_cast<Epetra_CrsMatrix *>(&A.trilinos_matrix()));
+        Amesos factory;
+        AssertThrow(factory.Query(parameters.direct_package.c_str()),
+                    ExcMessage("subsection 'Linear solver', parameter "
+                               "'Direct solver': " +
+                               parameters.direct_package +
+                               " is not in this Trilinos build; choose "
+                               "the other package (MUMPS or KLU)."));
+        direct_solver.reset(
+          factory.Create(parameters.direct_package.c_str(), *direct_problem));
+        AssertThrow(direct_solver->SymbolicFactorization() == 0,
+                    ExcMessage("The direct solver's analysis failed."));
+        analysed_matrix = &A.trilinos_matrix();
+      };
+      const bool fresh =
+        !direct_solver || analysed_matrix != &A.trilinos_matrix();
+      if (fresh)
+        analyse();
+      direct_problem->SetLHS(&x.trilinos_vector());
+      direct_problem->SetRHS(
+        const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
+      int status = direct_solver->NumericFactorization();
+      // The analysis chose its pivot order on the values of an earlier
+      // matrix; should the factorisation of the current values fail with it
+      // (e.g. more delayed pivots than the workspace it reserved), the
+      // current matrix is analysed again.
+      if (status != 0 && !fresh)
+        {
+          analyse();
+          direct_problem->SetLHS(&x.trilinos_vector());
+          direct_problem->SetRHS(
+            const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
+          status = direct_solver->NumericFactorization();
+        }
+      AssertThrow(status == 0,
+                  ExcMessage("The direct solver's factorisation failed "
+                             "(singular system?)."));
+      AssertThrow(direct_solver->Solve() == 0,
+                  ExcMessage("The direct solver's solve failed."));
+    }
+
+
+    template <int dim>
     unsigned int
     LinearSolver<dim>::solve(const TrilinosWrappers::SparseMatrix &A,
                              TrilinosWrappers::MPI::Vector &       x,
@@ -295,11 +363,7 @@ namespace Signorini
     {
       if (parameters.type == LinearSolverType::direct)
         {
-          SolverControl                               control(1, 0);
-          TrilinosWrappers::SolverDirect::AdditionalData data(
-            false, parameters.direct_package);
-          TrilinosWrappers::SolverDirect solver(control, data);
-          solver.solve(A, x, b);
+          solve_direct(A, x, b);
           return 0;
         }
 

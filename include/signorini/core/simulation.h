@@ -176,6 +176,8 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector  newton_rhs;   // -R on free DoFs
     TrilinosWrappers::MPI::Vector  internal_force, external_force; // no constraints
 
+    // After system_matrix: destroyed before it (the direct solver's
+    // factorisation refers to the matrix).
     std::unique_ptr<Solver::LinearSolver<dim>> linear_solver;
 
     // Contact: unknowns u | lambda | Lambda in one index space (see

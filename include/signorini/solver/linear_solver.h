@@ -10,13 +10,16 @@
 
 #include <memory>
 
+class Amesos_BaseSolver;
+class Epetra_LinearProblem;
 class Epetra_MultiVector;
 
 /**
  * The linear solve of one Newton iteration. Default: sparse LU by MUMPS
- * through Trilinos Amesos (TrilinosWrappers::SolverDirect with
- * "Amesos_Mumps"), which also handles the unsymmetric saddle-point systems of
- * contact. Option: CG or GMRES preconditioned by Trilinos ML AMG whose
+ * through Trilinos Amesos ("Amesos_Mumps"), which also handles the
+ * unsymmetric saddle-point systems of contact; its analysis (ordering,
+ * symbolic factorisation) is kept while the sparsity pattern stays the same,
+ * so that a Newton iteration pays the numeric factorisation only. Option: CG or GMRES preconditioned by Trilinos ML AMG whose
  * near-null space is the set of rigid-body modes (dim translations and
  * dim(dim-1)/2 rotations) computed from the displacement support points,
  * since deal.II 9.4's AMG interface only knows translations. Contact
@@ -57,6 +60,15 @@ namespace Signorini
       set_multipliers(const types::global_dof_index n_u,
                       const IndexSet &              owned_multipliers);
 
+      /**
+       * The sparsity pattern of the system matrix was rebuilt (new DoFs, a
+       * new pairing): the next direct solve analyses the matrix again
+       * (ordering, symbolic factorisation). Until then, a direct solve only
+       * refactorises the new values of the same pattern.
+       */
+      void
+      pattern_changed();
+
       /** Solves A x = b; returns the Krylov iterations (0 for direct). */
       unsigned int
       solve(const TrilinosWrappers::SparseMatrix &A,
@@ -70,6 +82,18 @@ namespace Signorini
       std::unique_ptr<Epetra_MultiVector> null_space;
       types::global_dof_index             n_u = 0;
       IndexSet                            owned_m; // multipliers, from 0
+
+      // Direct solver kept across solves with the same pattern: the
+      // analysis (ordering, symbolic factorisation) is done once per
+      // pattern, the numeric factorisation at every solve.
+      std::unique_ptr<Epetra_LinearProblem> direct_problem;
+      std::unique_ptr<Amesos_BaseSolver>    direct_solver;
+      const void *                          analysed_matrix = nullptr;
+
+      void
+      solve_direct(const TrilinosWrappers::SparseMatrix &A,
+                   TrilinosWrappers::MPI::Vector &       x,
+                   const TrilinosWrappers::MPI::Vector & b);
 
       unsigned int
       solve_blocks(const TrilinosWrappers::SparseMatrix &A,
