@@ -240,8 +240,17 @@ namespace Signorini
       const MPI_Comm comm = M.get_mpi_communicator();
       const auto     n    = M.m();
 
-      TrilinosWrappers::SparseMatrix A, Bt, C, D;
-      extract_block(M, 0, n_u, 0, n_u, owned, owned, A, comm);
+      TrilinosWrappers::SparseMatrix Bt, C, D;
+      // The AMG hierarchy of the u block is kept for the solves on the same
+      // pattern: it is built on the first matrix of the pattern, and later
+      // matrices differ from that one only in the contact terms.
+      if (!kept_amg)
+        {
+          kept_A = std::make_unique<TrilinosWrappers::SparseMatrix>();
+          extract_block(M, 0, n_u, 0, n_u, owned, owned, *kept_A, comm);
+          kept_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+          initialize_amg(*kept_amg, *kept_A);
+        }
       extract_block(M, 0, n_u, n_u, n, owned, owned_m, Bt, comm);
       extract_block(M, n_u, n, 0, n_u, owned_m, owned, C, comm);
       extract_block(M, n_u, n, n_u, n, owned_m, owned_m, D, comm);
@@ -249,7 +258,7 @@ namespace Signorini
       // S = D - C diag(A)^-1 B^T on the union of the two patterns.
       TrilinosWrappers::MPI::Vector inverse_diagonal(owned, comm);
       for (const auto i : owned)
-        inverse_diagonal[i] = 1. / A.diag_element(i);
+        inverse_diagonal[i] = 1. / M.diag_element(i);
       inverse_diagonal.compress(VectorOperation::insert);
       TrilinosWrappers::SparseMatrix CB;
       C.mmult(CB, Bt, inverse_diagonal);
@@ -270,15 +279,13 @@ namespace Signorini
         }
       S.compress(VectorOperation::add);
 
-      TrilinosWrappers::PreconditionAMG amg;
-      initialize_amg(amg, A);
       SolverControl                                  schur_control(1, 0);
       TrilinosWrappers::SolverDirect::AdditionalData schur_data(
         false, parameters.direct_package);
       TrilinosWrappers::SolverDirect schur(schur_control, schur_data);
       schur.initialize(S);
       const BlockPreconditioner preconditioner(
-        amg, C, schur, owned, owned_m, n_u, comm);
+        *kept_amg, C, schur, owned, owned_m, n_u, comm);
 
       SolverControl control(parameters.max_iterations,
                             parameters.relative_tolerance * b.l2_norm());
@@ -294,6 +301,8 @@ namespace Signorini
     void
     LinearSolver<dim>::pattern_changed()
     {
+      kept_amg.reset();
+      kept_A.reset();
       direct_solver.reset();
       direct_problem.reset();
       analysed_matrix = nullptr;

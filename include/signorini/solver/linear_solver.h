@@ -89,6 +89,10 @@ namespace Signorini
       std::unique_ptr<Epetra_LinearProblem> direct_problem;
       std::unique_ptr<Amesos_BaseSolver>    direct_solver;
       const void *                          analysed_matrix = nullptr;
+      // Contact systems with GMRES: the u block of the first matrix of the
+      // pattern and its AMG hierarchy (destroyed before it).
+      std::unique_ptr<TrilinosWrappers::SparseMatrix>    kept_A;
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG> kept_amg;
 
       void
       solve_direct(const TrilinosWrappers::SparseMatrix &A,
