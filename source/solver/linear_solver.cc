@@ -336,14 +336,17 @@ namespace Signorini
                     ExcMessage("The direct solver's analysis failed."));
         analysed_matrix = &A.trilinos_matrix();
       };
+      const auto factorise = [&]() {
+        direct_problem->SetLHS(&x.trilinos_vector());
+        direct_problem->SetRHS(
+          const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
+        return direct_solver->NumericFactorization();
+      };
       const bool fresh =
         !direct_solver || analysed_matrix != &A.trilinos_matrix();
       if (fresh)
         analyse();
-      direct_problem->SetLHS(&x.trilinos_vector());
-      direct_problem->SetRHS(
-        const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
-      int status = direct_solver->NumericFactorization();
+      int status = factorise();
       // The analysis chose its pivot order on the values of an earlier
       // matrix; should the factorisation of the current values fail with it
       // (e.g. more delayed pivots than the workspace it reserved), the
@@ -351,10 +354,7 @@ namespace Signorini
       if (status != 0 && !fresh)
         {
           analyse();
-          direct_problem->SetLHS(&x.trilinos_vector());
-          direct_problem->SetRHS(
-            const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
-          status = direct_solver->NumericFactorization();
+          status = factorise();
         }
       AssertThrow(status == 0,
                   ExcMessage("The direct solver's factorisation failed "

@@ -44,9 +44,7 @@ namespace Signorini
       stress(const SymmetricTensor<2, dim> &strain,
              const double                   strain_33 = 0) const
       {
-        return lambda * (trace(strain) + strain_33) *
-                 unit_symmetric_tensor<dim>() +
-               2 * mu * strain;
+        return stress_from_volumetric(strain, trace(strain) + strain_33);
       }
 
       /** 2D: the stress normal to the plane (sigma_zz of plane strain, the
@@ -55,7 +53,7 @@ namespace Signorini
       stress_33(const SymmetricTensor<2, dim> &strain,
                 const double                   strain_33 = 0) const
       {
-        return lambda * (trace(strain) + strain_33) + 2 * mu * strain_33;
+        return stress_33_from_volumetric(strain_33, trace(strain) + strain_33);
       }
 
       /** stress() with the volumetric strain @p volumetric in place of

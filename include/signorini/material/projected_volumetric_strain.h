@@ -45,18 +45,18 @@ namespace Signorini
        * @p axisymmetric: x = r, the hoop strain enters theta and the weight
        * 2 pi r the integrals. */
       ProjectedVolumetricStrain(const FiniteElement<dim> &fe,
-                                const Quadrature<dim>    &quadrature,
+                                const Quadrature<dim> &   quadrature,
                                 const bool                axisymmetric)
-          : fe(fe)
-          , quadrature(quadrature)
-          , basis(fe.degree - 1)
-          , axisymmetric(axisymmetric)
-          , n_basis(basis.n_dofs_per_cell())
-          , phi(n_basis, quadrature.size())
-          , M(n_basis, n_basis)
-          , M_inv(n_basis, n_basis)
-          , G(n_basis, fe.n_dofs_per_cell())
-          , M_inv_G(n_basis, fe.n_dofs_per_cell())
+        : fe(fe)
+        , quadrature(quadrature)
+        , basis(fe.degree - 1)
+        , axisymmetric(axisymmetric)
+        , n_basis(basis.n_dofs_per_cell())
+        , phi(n_basis, quadrature.size())
+        , M(n_basis, n_basis)
+        , M_inv(n_basis, n_basis)
+        , G(n_basis, fe.n_dofs_per_cell())
+        , M_inv_G(n_basis, fe.n_dofs_per_cell())
       {
         for (unsigned int a = 0; a < n_basis; ++a)
           for (unsigned int q = 0; q < quadrature.size(); ++q)
@@ -72,19 +72,20 @@ namespace Signorini
         std::vector<double>              theta(fe.n_dofs_per_cell());
         start_cell();
         for (unsigned int q = 0; q < quadrature.size(); ++q)
-        {
-          const double r = fe_values.quadrature_point(q)[0];
-          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
           {
-            theta[i] = fe_values[displacement].divergence(i, q);
-            if (axisymmetric && fe.system_to_component_index(i).first == 0)
-              theta[i] += fe_values.shape_value(i, q) / r;
+            const double r = fe_values.quadrature_point(q)[0];
+            for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+              {
+                theta[i] = fe_values[displacement].divergence(i, q);
+                if (axisymmetric &&
+                    fe.system_to_component_index(i).first == 0)
+                  theta[i] += fe_values.shape_value(i, q) / r;
+              }
+            add_point(q,
+                      fe_values.JxW(q) *
+                        (axisymmetric ? 2 * numbers::PI * r : 1.),
+                      theta);
           }
-          add_point(q,
-                    fe_values.JxW(q) *
-                      (axisymmetric ? 2 * numbers::PI * r : 1.),
-                    theta);
-        }
         finish_cell();
       }
 
@@ -104,13 +105,13 @@ namespace Signorini
                 const std::vector<double> &theta)
       {
         for (unsigned int a = 0; a < n_basis; ++a)
-        {
-          const double phi_dV = phi(a, q) * dV;
-          for (unsigned int b = 0; b < n_basis; ++b)
-            M(a, b) += phi_dV * phi(b, q);
-          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-            G(a, i) += phi_dV * theta[i];
-        }
+          {
+            const double phi_dV = phi(a, q) * dV;
+            for (unsigned int b = 0; b < n_basis; ++b)
+              M(a, b) += phi_dV * phi(b, q);
+            for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+              G(a, i) += phi_dV * theta[i];
+          }
       }
 
       void
@@ -143,8 +144,8 @@ namespace Signorini
       void
       add_cell_terms(const double          lambda,
                      const Vector<double> &theta,
-                     Vector<double>       &f_int,
-                     FullMatrix<double>   *matrix) const
+                     Vector<double> &      f_int,
+                     FullMatrix<double> *  matrix) const
       {
         const unsigned int n = fe.n_dofs_per_cell();
         for (unsigned int i = 0; i < n; ++i)
@@ -153,12 +154,12 @@ namespace Signorini
         if (matrix)
           for (unsigned int i = 0; i < n; ++i)
             for (unsigned int j = 0; j < n; ++j)
-            {
-              double k = 0;
-              for (unsigned int a = 0; a < n_basis; ++a)
-                k += G(a, i) * M_inv_G(a, j);
-              (*matrix)(i, j) += lambda * k;
-            }
+              {
+                double k = 0;
+                for (unsigned int a = 0; a < n_basis; ++a)
+                  k += G(a, i) * M_inv_G(a, j);
+                (*matrix)(i, j) += lambda * k;
+              }
       }
 
     private:

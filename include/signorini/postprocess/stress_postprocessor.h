@@ -35,14 +35,14 @@ namespace Signorini
        * per cell (B-bar). */
       StressPostprocessor(
         const std::map<types::material_id, Material::ElasticMaterial<dim>>
-                                            &materials,
+          &                                  materials,
         const bool                           axisymmetric = false,
-        const FiniteElement<dim>            *projected    = nullptr,
+        const FiniteElement<dim> *           projected    = nullptr,
         const TrilinosWrappers::MPI::Vector *solution     = nullptr)
-          : materials(materials)
-          , axisymmetric(axisymmetric)
-          , projected(projected)
-          , solution(solution)
+        : materials(materials)
+        , axisymmetric(axisymmetric)
+        , projected(projected)
+        , solution(solution)
       {
         Assert(!projected || solution, ExcInternalError());
       }
@@ -51,7 +51,7 @@ namespace Signorini
       get_names() const override
       {
         std::vector<std::string> names;
-        const char              *axis[] = {"x", "y", "z"};
+        const char *axis[] = {"x", "y", "z"};
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
             names.push_back(std::string("stress_") + axis[i] + axis[j]);
@@ -80,68 +80,69 @@ namespace Signorini
       void
       evaluate_vector_field(
         const DataPostprocessorInputs::Vector<dim> &inputs,
-        std::vector<Vector<double>>                &computed) const override
+        std::vector<Vector<double>> &computed) const override
       {
-        const auto          cell     = inputs.template get_cell<dim>();
-        const auto         &material = materials.at(cell->material_id());
+        const auto  cell = inputs.template get_cell<dim>();
+        const auto &material = materials.at(cell->material_id());
         std::vector<double> volumetric(computed.size());
         if (projected)
-        {
-          const QGauss<dim> quadrature(projected->degree + 1);
-          FEValues<dim>     fe_values(*projected,
-                                  quadrature,
-                                  update_values | update_gradients |
-                                    update_quadrature_points |
-                                    update_JxW_values);
-          fe_values.reinit(cell);
-          Material::ProjectedVolumetricStrain<dim> projection(*projected,
-                                                              quadrature,
-                                                              axisymmetric);
-          projection.reinit(fe_values);
-          Vector<double> local_u(projected->n_dofs_per_cell()), theta_bar;
-          cell->get_dof_values(*solution, local_u);
-          projection.coefficients(local_u, theta_bar);
-          for (unsigned int q = 0; q < computed.size(); ++q)
-            volumetric[q] =
-              projection.value(theta_bar,
-                               mapping.transform_real_to_unit_cell(
-                                 cell, inputs.evaluation_points[q]));
-        }
+          {
+            const QGauss<dim> quadrature(projected->degree + 1);
+            FEValues<dim>     fe_values(*projected,
+                                    quadrature,
+                                    update_values | update_gradients |
+                                      update_quadrature_points |
+                                      update_JxW_values);
+            fe_values.reinit(cell);
+            Material::ProjectedVolumetricStrain<dim> projection(*projected,
+                                                                quadrature,
+                                                                axisymmetric);
+            projection.reinit(fe_values);
+            Vector<double> local_u(projected->n_dofs_per_cell()), theta_bar;
+            cell->get_dof_values(*solution, local_u);
+            projection.coefficients(local_u, theta_bar);
+            for (unsigned int q = 0; q < computed.size(); ++q)
+              volumetric[q] =
+                projection.value(theta_bar,
+                                 mapping.transform_real_to_unit_cell(
+                                   cell, inputs.evaluation_points[q]));
+          }
         for (unsigned int q = 0; q < computed.size(); ++q)
-        {
-          SymmetricTensor<2, dim> strain;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = i; j < dim; ++j)
-              strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
-                                    inputs.solution_gradients[q][j][i]);
-          // Hoop strain u_r / r; on the axis its limit du_r/dr.
-          const double                  r = inputs.evaluation_points.empty() ?
-                                              0. :
-                                              inputs.evaluation_points[q][0];
-          const double                  hoop = !axisymmetric ? 0. :
-                                               r > 0 ? inputs.solution_values[q][0] / r :
-                                                       inputs.solution_gradients[q][0][0];
-          const SymmetricTensor<2, dim> stress =
-            projected ? material.stress_from_volumetric(strain, volumetric[q]) :
-                        material.stress(strain, hoop);
-          unsigned int k = 0;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = i; j < dim; ++j)
-              computed[q][k++] = stress[i][j];
-          if (dim == 2)
-            computed[q][k++] =
+          {
+            SymmetricTensor<2, dim> strain;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
+                                      inputs.solution_gradients[q][j][i]);
+            // Hoop strain u_r / r; on the axis its limit du_r/dr.
+            const double r    = inputs.evaluation_points.empty() ?
+                                  0. :
+                                  inputs.evaluation_points[q][0];
+            const double hoop = !axisymmetric ? 0. :
+                                r > 0 ? inputs.solution_values[q][0] / r :
+                                        inputs.solution_gradients[q][0][0];
+            const SymmetricTensor<2, dim> stress =
               projected ?
-                material.stress_33_from_volumetric(hoop, volumetric[q]) :
-                material.stress_33(strain, hoop);
-          computed[q][k] = material.von_mises(strain, hoop);
-        }
+                material.stress_from_volumetric(strain, volumetric[q]) :
+                material.stress(strain, hoop);
+            unsigned int k = 0;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                computed[q][k++] = stress[i][j];
+            if (dim == 2)
+              computed[q][k++] =
+                projected ?
+                  material.stress_33_from_volumetric(hoop, volumetric[q]) :
+                  material.stress_33(strain, hoop);
+            computed[q][k] = material.von_mises(strain, hoop);
+          }
       }
 
     private:
       const std::map<types::material_id, Material::ElasticMaterial<dim>>
-                                          &materials;
+        &                                  materials;
       const bool                           axisymmetric;
-      const FiniteElement<dim>            *projected;
+      const FiniteElement<dim> *           projected;
       const TrilinosWrappers::MPI::Vector *solution;
       const MappingQ1<dim>                 mapping;
     };

@@ -19,9 +19,10 @@ class Epetra_MultiVector;
  * through Trilinos Amesos ("Amesos_Mumps"), which also handles the
  * unsymmetric saddle-point systems of contact; its analysis (ordering,
  * symbolic factorisation) is kept while the sparsity pattern stays the same,
- * so that a Newton iteration pays the numeric factorisation only. Option: CG or GMRES preconditioned by Trilinos ML AMG whose
- * near-null space is the set of rigid-body modes (dim translations and
- * dim(dim-1)/2 rotations) computed from the displacement support points,
+ * so that a Newton iteration pays the numeric factorisation only. Option:
+ * CG or GMRES preconditioned by Trilinos ML AMG whose near-null space is
+ * the set of rigid-body modes (dim translations and dim(dim-1)/2
+ * rotations) computed from the displacement support points,
  * since deal.II 9.4's AMG interface only knows translations. Contact
  * systems: GMRES with a block preconditioner (set_multipliers()).
  */
