@@ -59,13 +59,17 @@ namespace Signorini
     unsigned int
     tangent_axis(const Tensor<1, dim> &n)
     {
-      // Crossing n with the axis least aligned with it keeps the cross
-      // product's norm >= sqrt(2/3): no cancellation, whatever n is.
+      // The x axis unless n is within 37 degrees of it (the cross
+      // product's norm stays >= 0.6, no cancellation); then the one of y, z
+      // least aligned with n. One axis for every point of a surface that
+      // does not face x: the tangent frames of neighbouring points agree,
+      // so that a multiplier node's Lambda means one direction over its
+      // faces (the least aligned axis of each point flipped between x and
+      // y on a slightly uneven surface facing z, turning T by 90 degrees).
       unsigned int axis = 0;
       if constexpr (dim == 3)
-        for (unsigned int i = 1; i < dim; ++i)
-          if (std::abs(n[i]) < std::abs(n[axis]))
-            axis = i;
+        if (std::abs(n[0]) > 0.8)
+          axis = std::abs(n[1]) <= std::abs(n[2]) ? 1 : 2;
       return axis;
     }
 

@@ -110,11 +110,14 @@ namespace Signorini
         {
           const auto &pair = contact.pairs[p];
           // Normal status per multiplier node: integration-point rules,
-          // frictionless, meshed master (the others have one law per node).
-          node_status_pair.push_back(contact.node_status &&
-                                     contact.rule != IntegrationRule::nodal &&
-                                     pair.friction == 0 &&
-                                     pair.master == MasterType::body);
+          // meshed master (the others have one law per node), frictionless
+          // or with the friction status per node too.
+          node_status_pair.push_back(
+            contact.node_status && contact.rule != IntegrationRule::nodal &&
+            (pair.friction == 0 || contact.friction_node_status) &&
+            pair.master == MasterType::body);
+          friction_node_pair.push_back(node_status_pair.back() &&
+                                       pair.friction > 0);
           any_node_status = any_node_status || node_status_pair.back();
           // Newton on the geometry: rigid obstacles with their own normal.
           newton_geometry_pair.push_back(
@@ -350,6 +353,34 @@ namespace Signorini
         }
       return (x_e - x_m) * point.normal +
              parameters.contact.pairs[slave_faces[point.face].pair].gap_offset;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim - 1>
+    ContactProblem<dim>::point_slip(
+      const ContactPoint &                 point,
+      const TrilinosWrappers::MPI::Vector &state,
+      const TrilinosWrappers::MPI::Vector &start) const
+    {
+      // v = P (Delta u^e - Delta u^m), in the tangent basis of the point.
+      Tensor<1, dim> v = slave_position(point, state) -
+                         slave_position(point, start) -
+                         point.rigid_increment;
+      if (point.master_face >= 0)
+        {
+          const auto &m = master_faces[point.master_face];
+          v             = slave_position(point, state) -
+              slave_position(point, start);
+          for (unsigned int k = 0; k < m.X.size(); ++k)
+            for (unsigned int c = 0; c < dim; ++c)
+              v[c] -= point.N_m[k] * (state[m.dofs[k * dim + c]] -
+                                      start[m.dofs[k * dim + c]]);
+        }
+      Tensor<1, dim - 1> t;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        t[k] = v * point.tangents[k];
+      return t;
     }
 
 
@@ -1344,6 +1375,18 @@ namespace Signorini
       r.in_contact = point.paired && node_active.at(face.lambda_dofs[nearest]);
       r.status     = r.in_contact ? PointStatus::slip : PointStatus::free;
       r.friction_active = false;
+      if (r.in_contact && friction_node_pair[face.pair])
+        {
+          // Labelled with the friction status of the same node; the
+          // friction force and rows are the assembly's (per node).
+          const auto &nf    = node_friction.at(face.lambda_dofs[nearest]);
+          r.friction_active = nf.active;
+          if (nf.active && nf.stick)
+            r.status = PointStatus::stick;
+          else if (nf.active)
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              r.slip_direction += nf.H[k] / nf.H.norm() * s.tangents[k];
+        }
       if (point.paired)
         {
           r.force          = -s.lambda * s.normal;
@@ -1356,7 +1399,8 @@ namespace Signorini
     template <int dim>
     unsigned int
     ContactProblem<dim>::decide_node_statuses(
-      const TrilinosWrappers::MPI::Vector &state)
+      const TrilinosWrappers::MPI::Vector &state,
+      const TrilinosWrappers::MPI::Vector &start)
     {
       // Weighted gap G_l and weight D_l of every node (faces of all ranks).
       // P_l: the paired share of the node (psi >= 0); a node without
@@ -1364,12 +1408,24 @@ namespace Signorini
       auto G = writable_vector(owned_multipliers, extra, comm);
       auto D = writable_vector(owned_multipliers, extra, comm);
       auto P = writable_vector(owned_multipliers, extra, comm);
+      // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
+      // component k in the vector of index k (by the node's lambda DoF).
+      std::vector<TrilinosWrappers::MPI::Vector> W;
+      bool any_friction = false;
+      for (unsigned int p = 0; p < friction_node_pair.size(); ++p)
+        any_friction = any_friction || friction_node_pair[p];
+      if (any_friction)
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          W.push_back(writable_vector(owned_multipliers, extra, comm));
       for (const auto &point : points)
         {
           const auto &face = slave_faces[point.face];
           if (!node_status_pair[face.pair])
             continue;
           const double g = point.paired ? point_gap(point, state) : 0.;
+          const bool   slip = point.paired && friction_node_pair[face.pair];
+          const auto   v =
+            slip ? point_slip(point, state, start) : Tensor<1, dim - 1>();
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
             {
               const double w = point.weight * point.psi_lambda[l];
@@ -1377,6 +1433,9 @@ namespace Signorini
               add_entry(D, face.lambda_dofs[l], w);
               if (point.paired)
                 add_entry(P, face.lambda_dofs[l], point.weight * point.psi[l]);
+              if (slip)
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  add_entry(W[k], face.lambda_dofs[l], w * v[k]);
             }
         }
       G.compress(VectorOperation::add);
@@ -1388,6 +1447,13 @@ namespace Signorini
       G_read = G;
       D_read = D;
       P_read = P;
+      std::vector<TrilinosWrappers::MPI::Vector> W_read(W.size());
+      for (unsigned int k = 0; k < W.size(); ++k)
+        {
+          W[k].compress(VectorOperation::add);
+          W_read[k].reinit(owned_multipliers, extra, comm);
+          W_read[k] = W[k];
+        }
       unsigned int changed = 0;
       for (const auto &face : slave_faces)
         if (node_status_pair[face.pair])
@@ -1408,6 +1474,47 @@ namespace Signorini
                 ++changed;
               node_active[dof] = active;
             }
+      // Friction status per node (theory.md, "Friction status per node"):
+      // active if in contact with a threshold above zero (formulation.md
+      // 3.3); H_l = Lambda_l + rho_t W_l / D_l; stick iff |H_l| <= 1 (the
+      // round-off tie as in the point law).
+      if (any_friction)
+        for (unsigned int f = 0; f < slave_faces.size(); ++f)
+          {
+            const auto &face = slave_faces[f];
+            if (!friction_node_pair[face.pair])
+              continue;
+            const auto law = law_parameters(face.pair);
+            for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
+              {
+                const auto   dof = face.lambda_dofs[l];
+                NodeFriction nf;
+                nf.active = node_active.at(dof) &&
+                            std::abs(state[dof]) > law.zero_threshold &&
+                            D_read[dof] > 0;
+                if (nf.active)
+                  {
+                    for (unsigned int k = 0; k < dim - 1; ++k)
+                      nf.H[k] =
+                        state[face.friction_dofs[l * (dim - 1) + k]] +
+                        law.rho_t * W_read[k][dof] / D_read[dof];
+                    nf.stick = nf.H.norm() <= 1. + 1e-12;
+                  }
+                const auto it = node_friction.find(dof);
+                const bool differs =
+                  it == node_friction.end() ?
+                    nf.active :
+                    (it->second.active != nf.active ||
+                     it->second.stick != nf.stick ||
+                     (nf.active && !nf.stick && !it->second.stick &&
+                      it->second.H * nf.H < 0));
+                // A node on several faces: its second visit finds the
+                // same status (counted once, by the owner).
+                if (differs && owned_multipliers.is_element(dof))
+                  ++changed;
+                node_friction[dof] = nf;
+              }
+          }
       return changed;
     }
 
@@ -1481,7 +1588,7 @@ namespace Signorini
       update_projections(state);
       if (any_node_status)
         {
-          stats.n_changed += decide_node_statuses(state);
+          stats.n_changed += decide_node_statuses(state, start);
           // The statuses of the next solve (release extrapolation).
           if (matrix)
             node_active_solved = node_active;
@@ -1605,6 +1712,32 @@ namespace Signorini
           const bool by_node      = node_status_pair[p];
           auto r =
             by_node ? node_status_response(point, s) : evaluate_contact_law(s, law);
+          // Friction status per node: the friction force of the multipliers,
+          // -mu lambda_l T Lambda_l of each node with active friction
+          // interpolated like lambda (theory.md, "Friction status per
+          // node").
+          const bool node_friction_rows = by_node && fric;
+          Tensor<1, dim - 1> slip_t; // T^T v
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            slip_t[k] = point.paired ? (s.slip - (s.slip * s.normal) * s.normal) *
+                                         s.tangents[k] :
+                                       0.;
+          const auto node_Lambda = [&](const unsigned int l) {
+            Tensor<1, dim - 1> L;
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              L[k] = state[face.friction_dofs[l * (dim - 1) + k]];
+            return L;
+          };
+          if (node_friction_rows && point.paired)
+            for (unsigned int l = 0; l < n_l; ++l)
+              if (node_friction.at(face.lambda_dofs[l]).active)
+                {
+                  const auto L = node_Lambda(l);
+                  for (unsigned int k = 0; k < dim - 1; ++k)
+                    r.force += -law.mu * psi_c[l] *
+                               state[face.lambda_dofs[l]] * L[k] *
+                               s.tangents[k];
+                }
           if (geometry_newton)
             add_geometric_derivatives(
               r, s, surface_slip, dslip_du, dn_du, point.tangent_axis);
@@ -1766,6 +1899,26 @@ namespace Signorini
               for (unsigned int k = 0; k < (fric ? dim - 1 : 0); ++k)
                 F[o_f + l * (dim - 1) + k] = -sf * w * psi[l] * r.r_f[k];
             }
+          // Friction rows of a node-status pair, per node: free (or zero
+          // threshold) s Lambda_l; stick -mu lambda_l W_l (its weighted
+          // slip closed); slip (mu lambda_l / rho_t) D_l (Lambda_l - q_l),
+          // q_l = H_l / |H_l|; each point adds its share w psi_l.
+          if (node_friction_rows)
+            for (unsigned int l = 0; l < n_l; ++l)
+              {
+                const auto & nf  = node_friction.at(face.lambda_dofs[l]);
+                const double lam = state[face.lambda_dofs[l]];
+                const auto   L   = node_Lambda(l);
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  {
+                    const double r_f =
+                      !nf.active ? law.free_friction_scale * L[k] :
+                      nf.stick   ? -law.mu * lam * slip_t[k] :
+                                   law.mu * lam / law.rho_t *
+                                   (L[k] - nf.H[k] / nf.H.norm());
+                    F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
+                  }
+              }
           for (unsigned int a = 0; a < n_e + n_m; ++a)
             add_entry(contact_force, dofs[a], -F[a]);
 
@@ -1846,6 +1999,74 @@ namespace Signorini
                       }
                   }
             }
+
+          // Their derivatives (the status of each node fixed).
+          if (matrix && node_friction_rows)
+            for (unsigned int l = 0; l < n_l; ++l)
+              {
+                const auto &       nf  = node_friction.at(face.lambda_dofs[l]);
+                const double       lam = state[face.lambda_dofs[l]];
+                const auto         L   = node_Lambda(l);
+                const double       wl  = sf * w * psi_c[l];
+                const unsigned int of  = o_f + l * (dim - 1);
+                if (!nf.active)
+                  {
+                    for (unsigned int k = 0; k < dim - 1; ++k)
+                      K(of + k, of + k) += wl * law.free_friction_scale;
+                    continue;
+                  }
+                if (point.paired)
+                  {
+                    // Displacement rows: d/dlambda_l, d/dLambda_l.
+                    Tensor<1, dim> TL;
+                    for (unsigned int k = 0; k < dim - 1; ++k)
+                      TL += L[k] * s.tangents[k];
+                    for (unsigned int a = 0; a < n_e + n_m; ++a)
+                      {
+                        K(a, o_c + l) +=
+                          w * Nd[a] * (-law.mu * psi_c[l] * TL[comp[a]]);
+                        for (unsigned int k = 0; k < dim - 1; ++k)
+                          K(a, of + k) +=
+                            w * Nd[a] *
+                            (-law.mu * psi_c[l] * lam * s.tangents[k][comp[a]]);
+                      }
+                  }
+                if (nf.stick)
+                  {
+                    if (point.paired)
+                      for (unsigned int k = 0; k < dim - 1; ++k)
+                        {
+                          for (unsigned int a = 0; a < n_e + n_m; ++a)
+                            K(of + k, a) += wl * (-law.mu * lam) *
+                                            s.tangents[k][comp[a]] * Nd[a];
+                          K(of + k, o_c + l) += wl * (-law.mu * slip_t[k]);
+                        }
+                    continue;
+                  }
+                // Slip: K_B = (I - q q) / |H|, dH/dLambda_l = I,
+                // dH/du = rho_t / D_l dW/du.
+                const double       nH = nf.H.norm();
+                Tensor<2, dim - 1> KB;
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                    KB[k][kk] = ((k == kk) - nf.H[k] * nf.H[kk] / (nH * nH)) / nH;
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  {
+                    for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                      K(of + k, of + kk) += wl * law.mu * lam / law.rho_t *
+                                            ((k == kk) - KB[k][kk]);
+                    K(of + k, o_c + l) +=
+                      wl * law.mu / law.rho_t * (L[k] - nf.H[k] / nH);
+                    if (point.paired)
+                      for (unsigned int a = 0; a < n_e + n_m; ++a)
+                        {
+                          double KBT = 0;
+                          for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                            KBT += KB[k][kk] * s.tangents[kk][comp[a]];
+                          K(of + k, a) += wl * (-law.mu * lam) * KBT * Nd[a];
+                        }
+                  }
+              }
 
           // Points of one slave face paired with one master face share
           // their unknowns: sum them and distribute once per group (a
@@ -2221,11 +2442,33 @@ namespace Signorini
     ContactProblem<dim>::summary() const
     {
       std::vector<PairSummary> result(parameters.contact.pairs.size());
+      // Node-status pairs: the normal and tangential forces in the contact
+      // frames are summed per multiplier node (the force F_l = sum w psi_l f
+      // that node l carries, against the psi-weighted normal): with dual
+      // multipliers the traction at single points oscillates, its nodal
+      // forces do not.
+      std::vector<TrilinosWrappers::MPI::Vector> nodal;
+      if (any_node_status)
+        for (unsigned int c = 0; c < 2 * dim; ++c)
+          nodal.push_back(writable_vector(owned_multipliers, extra, comm));
       for (const auto &point : points)
         {
-          auto &r = result[slave_faces[point.face].pair];
+          const auto &face = slave_faces[point.face];
+          auto &      r    = result[face.pair];
           r.force += point.weight * point.force;
-          if (point.status != PointStatus::free)
+          if (node_status_pair[face.pair])
+            {
+              for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    const double w = point.weight * point.psi[l];
+                    add_entry(nodal[c], face.lambda_dofs[l], w * point.force[c]);
+                    add_entry(nodal[dim + c],
+                              face.lambda_dofs[l],
+                              w * point.normal[c]);
+                  }
+            }
+          else if (point.status != PointStatus::free)
             {
               const double f_n = point.force * point.normal;
               r.normal_force_local += point.weight * std::abs(f_n);
@@ -2237,6 +2480,32 @@ namespace Signorini
           r.n_contact += point.status != PointStatus::free;
           r.n_stick += point.status == PointStatus::stick;
           r.n_slip += point.status == PointStatus::slip;
+        }
+      if (any_node_status)
+        {
+          for (auto &v : nodal)
+            v.compress(VectorOperation::add);
+          // Each owned node once (the owner adds it).
+          std::set<types::global_dof_index> seen;
+          for (const auto &face : slave_faces)
+            if (node_status_pair[face.pair])
+              for (const auto dof : face.lambda_dofs)
+                if (owned_multipliers.is_element(dof) &&
+                    seen.insert(dof).second)
+                  {
+                    Tensor<1, dim> F, n;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        F[c] = nodal[c][dof];
+                        n[c] = nodal[dim + c][dof];
+                      }
+                    if (n.norm() == 0)
+                      continue;
+                    n /= n.norm();
+                    auto &r = result[face.pair];
+                    r.normal_force_local += std::abs(F * n);
+                    r.tangential_force_local += (F - (F * n) * n).norm();
+                  }
         }
       for (unsigned int p = 0; p < result.size(); ++p)
         if (obstacles[p])

@@ -853,6 +853,22 @@ namespace Signorini
                       "0: the converged solution does not depend on the "
                       "'Normal coefficient'). The nodal rule, frictional "
                       "pairs and rigid obstacles always use points.");
+    prm.declare_entry("Friction status",
+                      "point",
+                      Patterns::Selection("point|node"),
+                      "Where the stick/slip status is decided with the "
+                      "integration-point rules (gauss, simpson, newton-cotes, "
+                      "mortar) on frictional pairs with a meshed master: per "
+                      "contact point (formulation.md 3.2), or per multiplier "
+                      "node on the weighted slip (sticking nodes close their "
+                      "weighted slip, slipping nodes carry Lambda along it, "
+                      "free nodes Lambda = 0; the contact status of these "
+                      "pairs is then decided per node too, as with 'Normal "
+                      "status = node'). With node, the converged solution "
+                      "does not depend on the 'Tangential coefficient' nor "
+                      "on the 'Normal coefficient', as with the nodal rule. "
+                      "Needs 'Normal status = node' and 'Friction threshold "
+                      "= newton'.");
     prm.declare_entry("Friction threshold",
                       "newton",
                       Patterns::Selection("newton|frozen"),
@@ -982,6 +998,18 @@ namespace Signorini
                                           InitialStatus::closed;
     node_status              = prm.get("Normal status") == "node";
     frozen_threshold         = prm.get("Friction threshold") == "frozen";
+    friction_node_status     = prm.get("Friction status") == "node";
+    if (friction_node_status && !node_status)
+      throw InputError("subsection 'Contact', parameter 'Friction status' = "
+                       "node needs 'Normal status = node' (the stick/slip "
+                       "status of a node needs the node's own contact "
+                       "status): set 'Normal status = node' or 'Friction "
+                       "status = point'.");
+    if (friction_node_status && frozen_threshold)
+      throw InputError("subsection 'Contact', parameter 'Friction status' = "
+                       "node works with the Newton friction threshold only: "
+                       "set 'Friction threshold = newton' or 'Friction "
+                       "status = point'.");
     newton_geometry = prm.get("Geometric linearisation") != "fixed point";
     newton_geometry_all =
       prm.get("Geometric linearisation") == "newton";

@@ -600,7 +600,15 @@ namespace Signorini
        * changed.
        */
       unsigned int
-      decide_node_statuses(const TrilinosWrappers::MPI::Vector &state);
+      decide_node_statuses(const TrilinosWrappers::MPI::Vector &state,
+                           const TrilinosWrappers::MPI::Vector &start);
+
+      /** Tangent coordinates T^T v of the slip increment v of
+       * formulation.md 2 at a paired @p point (from @p start). */
+      Tensor<1, dim - 1>
+      point_slip(const ContactPoint &                 point,
+                 const TrilinosWrappers::MPI::Vector &state,
+                 const TrilinosWrappers::MPI::Vector &start) const;
 
       /** The dual multiplier basis of @p face (SlaveFace::dual). */
       std::vector<double>
@@ -669,6 +677,18 @@ namespace Signorini
       // Normal status of the multiplier nodes of node-status pairs (key:
       // lambda DoF; the nodes of this rank's slave faces).
       std::map<types::global_dof_index, bool> node_active;
+      // Friction status of the multiplier nodes of frictional node-status
+      // pairs ('Friction status = node'; key: lambda DoF): active (in
+      // contact, nonzero threshold), stick, and H_l = Lambda_l +
+      // rho_t W_l / D_l with the weighted slip W_l (theory.md).
+      struct NodeFriction
+      {
+        bool               active = false;
+        bool               stick  = false;
+        Tensor<1, dim - 1> H;
+      };
+      std::map<types::global_dof_index, NodeFriction> node_friction;
+      std::vector<bool> friction_node_pair; // per pair
       unsigned int        iterates_recorded = 0; // in this Newton solve
       // Release extrapolation on node-status pairs: the node statuses of
       // the last solve, the nodes open for the next solve, those opened
