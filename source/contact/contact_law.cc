@@ -314,8 +314,7 @@ namespace Signorini
       // v = 0, so |h| = 1 +/- 1e-16 and the decision would be round-off
       // (different in SI and in mm-N-MPa). Such a tie is stick: the point
       // has not slipped in this step yet.
-      constexpr double tie = 1e-12;
-      if ((norm_h <= 1. + tie || state.freeze_stick) && !frozen_slip)
+      if ((norm_h <= 1. + stick_tie || state.freeze_stick) && !frozen_slip)
         {
           // Stick: P_B(h) = h.
           response.status = PointStatus::stick;

@@ -118,6 +118,7 @@ namespace Signorini
             pair.master == MasterType::body);
           friction_node_pair.push_back(node_status_pair.back() &&
                                        pair.friction > 0);
+          any_friction_node = any_friction_node || friction_node_pair.back();
           any_node_status = any_node_status || node_status_pair.back();
           // Newton on the geometry: rigid obstacles with their own normal.
           newton_geometry_pair.push_back(
@@ -364,14 +365,13 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector &start) const
     {
       // v = P (Delta u^e - Delta u^m), in the tangent basis of the point.
-      Tensor<1, dim> v = slave_position(point, state) -
-                         slave_position(point, start) -
-                         point.rigid_increment;
-      if (point.master_face >= 0)
+      Tensor<1, dim> v =
+        slave_position(point, state) - slave_position(point, start);
+      if (point.master_face < 0)
+        v -= point.rigid_increment;
+      else
         {
           const auto &m = master_faces[point.master_face];
-          v             = slave_position(point, state) -
-              slave_position(point, start);
           for (unsigned int k = 0; k < m.X.size(); ++k)
             for (unsigned int c = 0; c < dim; ++c)
               v[c] -= point.N_m[k] * (state[m.dofs[k * dim + c]] -
@@ -1411,10 +1411,7 @@ namespace Signorini
       // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
       // component k in the vector of index k (by the node's lambda DoF).
       std::vector<TrilinosWrappers::MPI::Vector> W;
-      bool any_friction = false;
-      for (unsigned int p = 0; p < friction_node_pair.size(); ++p)
-        any_friction = any_friction || friction_node_pair[p];
-      if (any_friction)
+      if (any_friction_node)
         for (unsigned int k = 0; k < dim - 1; ++k)
           W.push_back(writable_vector(owned_multipliers, extra, comm));
       for (const auto &point : points)
@@ -1478,7 +1475,7 @@ namespace Signorini
       // active if in contact with a threshold above zero (formulation.md
       // 3.3); H_l = Lambda_l + rho_t W_l / D_l; stick iff |H_l| <= 1 (the
       // round-off tie as in the point law).
-      if (any_friction)
+      if (any_friction_node)
         for (unsigned int f = 0; f < slave_faces.size(); ++f)
           {
             const auto &face = slave_faces[f];
@@ -1498,7 +1495,7 @@ namespace Signorini
                       nf.H[k] =
                         state[face.friction_dofs[l * (dim - 1) + k]] +
                         law.rho_t * W_read[k][dof] / D_read[dof];
-                    nf.stick = nf.H.norm() <= 1. + 1e-12;
+                    nf.stick = nf.H.norm() <= 1. + stick_tie;
                   }
                 const auto it = node_friction.find(dof);
                 const bool differs =
@@ -1603,6 +1600,13 @@ namespace Signorini
       std::vector<double>       N_e, Nd;
       std::vector<unsigned int> comp;
       std::vector<NodeStatusRow<dim>> node_rows;
+      struct NodeData
+      {
+        const NodeFriction *status;
+        double              lambda;
+        Tensor<1, dim - 1>  Lambda;
+      };
+      std::vector<NodeData> node_data; // friction status per node
       std::vector<Point<dim>>         x_face;
       const auto                           flush = [&]() {
         if (group_dofs.empty())
@@ -1717,27 +1721,26 @@ namespace Signorini
           // interpolated like lambda (theory.md, "Friction status per
           // node").
           const bool node_friction_rows = by_node && fric;
-          Tensor<1, dim - 1> slip_t; // T^T v
+          Tensor<1, dim - 1> slip_t; // T^T v (s.slip is tangential)
           for (unsigned int k = 0; k < dim - 1; ++k)
-            slip_t[k] = point.paired ? (s.slip - (s.slip * s.normal) * s.normal) *
-                                         s.tangents[k] :
-                                       0.;
-          const auto node_Lambda = [&](const unsigned int l) {
-            Tensor<1, dim - 1> L;
-            for (unsigned int k = 0; k < dim - 1; ++k)
-              L[k] = state[face.friction_dofs[l * (dim - 1) + k]];
-            return L;
-          };
-          if (node_friction_rows && point.paired)
-            for (unsigned int l = 0; l < n_l; ++l)
-              if (node_friction.at(face.lambda_dofs[l]).active)
-                {
-                  const auto L = node_Lambda(l);
-                  for (unsigned int k = 0; k < dim - 1; ++k)
-                    r.force += -law.mu * psi_c[l] *
-                               state[face.lambda_dofs[l]] * L[k] *
-                               s.tangents[k];
-                }
+            slip_t[k] = point.paired ? s.slip * s.tangents[k] : 0.;
+          // Status, lambda_l and Lambda_l of the face's nodes, looked up
+          // once per point (force, rows and derivatives below).
+          node_data.resize(node_friction_rows ? n_l : 0);
+          for (unsigned int l = 0; l < node_data.size(); ++l)
+            {
+              auto &d  = node_data[l];
+              d.status = &node_friction.at(face.lambda_dofs[l]);
+              d.lambda = state[face.lambda_dofs[l]];
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                d.Lambda[k] = state[face.friction_dofs[l * (dim - 1) + k]];
+            }
+          if (point.paired)
+            for (unsigned int l = 0; l < node_data.size(); ++l)
+              if (node_data[l].status->active)
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  r.force += -law.mu * psi_c[l] * node_data[l].lambda *
+                             node_data[l].Lambda[k] * s.tangents[k];
           if (geometry_newton)
             add_geometric_derivatives(
               r, s, surface_slip, dslip_du, dn_du, point.tangent_axis);
@@ -1903,22 +1906,21 @@ namespace Signorini
           // threshold) s Lambda_l; stick -mu lambda_l W_l (its weighted
           // slip closed); slip (mu lambda_l / rho_t) D_l (Lambda_l - q_l),
           // q_l = H_l / |H_l|; each point adds its share w psi_l.
-          if (node_friction_rows)
-            for (unsigned int l = 0; l < n_l; ++l)
-              {
-                const auto & nf  = node_friction.at(face.lambda_dofs[l]);
-                const double lam = state[face.lambda_dofs[l]];
-                const auto   L   = node_Lambda(l);
-                for (unsigned int k = 0; k < dim - 1; ++k)
-                  {
-                    const double r_f =
-                      !nf.active ? law.free_friction_scale * L[k] :
-                      nf.stick   ? -law.mu * lam * slip_t[k] :
-                                   law.mu * lam / law.rho_t *
-                                   (L[k] - nf.H[k] / nf.H.norm());
-                    F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
-                  }
-              }
+          for (unsigned int l = 0; l < node_data.size(); ++l)
+            {
+              const auto & nf  = *node_data[l].status;
+              const double lam = node_data[l].lambda;
+              const auto & L   = node_data[l].Lambda;
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                {
+                  const double r_f =
+                    !nf.active ? law.free_friction_scale * L[k] :
+                    nf.stick   ? -law.mu * lam * slip_t[k] :
+                                 law.mu * lam / law.rho_t *
+                                 (L[k] - nf.H[k] / nf.H.norm());
+                  F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
+                }
+            }
           for (unsigned int a = 0; a < n_e + n_m; ++a)
             add_entry(contact_force, dofs[a], -F[a]);
 
@@ -2001,12 +2003,12 @@ namespace Signorini
             }
 
           // Their derivatives (the status of each node fixed).
-          if (matrix && node_friction_rows)
-            for (unsigned int l = 0; l < n_l; ++l)
+          if (matrix)
+            for (unsigned int l = 0; l < node_data.size(); ++l)
               {
-                const auto &       nf  = node_friction.at(face.lambda_dofs[l]);
-                const double       lam = state[face.lambda_dofs[l]];
-                const auto         L   = node_Lambda(l);
+                const auto &       nf  = *node_data[l].status;
+                const double       lam = node_data[l].lambda;
+                const auto &       L   = node_data[l].Lambda;
                 const double       wl  = sf * w * psi_c[l];
                 const unsigned int of  = o_f + l * (dim - 1);
                 if (!nf.active)

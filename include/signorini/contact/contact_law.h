@@ -384,6 +384,14 @@ namespace Signorini
      * does not depend on rho_n (formulation.md 8), as with the nodal rule,
      * of which this is the weighted (mortar) form.
      */
+    /**
+     * |h| <= 1 + stick_tie is stick (section 3.2): at the first iterate of
+     * a step after a slipping one |h| = 1 up to round-off, and the decision
+     * must not depend on it (nor on the units). Used by the point law and by
+     * the friction status per node.
+     */
+    constexpr double stick_tie = 1e-12;
+
     inline bool
     node_in_contact(const double lambda_l,
                     const double weighted_gap,

@@ -689,6 +689,7 @@ namespace Signorini
       };
       std::map<types::global_dof_index, NodeFriction> node_friction;
       std::vector<bool> friction_node_pair; // per pair
+      bool              any_friction_node = false;
       unsigned int        iterates_recorded = 0; // in this Newton solve
       // Release extrapolation on node-status pairs: the node statuses of
       // the last solve, the nodes open for the next solve, those opened
