@@ -60,6 +60,28 @@ namespace Signorini
         return v;
       }
 
+      // The master faces whose boxes meet @p box, in master_faces order.
+      // The tree's own order follows its packing, which sorts box centres
+      // and so breaks ties (faces of a structured mesh in a row) by the
+      // round-off of the iterate; the mortar cuts and the search's ties must
+      // not depend on that (it differs with the MPI partition).
+      template <int dim>
+      std::vector<unsigned int>
+      faces_meeting(
+        const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree,
+        const BoundingBox<dim> &                                box)
+      {
+        std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+        tree.query(boost::geometry::index::intersects(box),
+                   std::back_inserter(hits));
+        std::vector<unsigned int> faces;
+        faces.reserve(hits.size());
+        for (const auto &hit : hits)
+          faces.push_back(hit.second);
+        std::sort(faces.begin(), faces.end());
+        return faces;
+      }
+
       // Exclusive prefix sum over ranks.
       types::global_dof_index
       offset_of(const types::global_dof_index n, const MPI_Comm comm)
@@ -525,6 +547,11 @@ namespace Signorini
                          m != master_of.end() && cell->is_locally_owned())
                   {
                     master_ints.push_back(m->second);
+                    const auto id = cell->id().template to_binary<dim>();
+                    for (const auto k : id)
+                      master_ints.push_back(k);
+                    master_ints.push_back(f);
+                    master_ints.push_back(own_master_cells.size());
                     own_master_cells.push_back(cell);
                     e_master[m->second] = std::max(
                       e_master[m->second],
@@ -731,15 +758,21 @@ namespace Signorini
       // Master faces and the constraint lines of their DoFs, from all ranks.
       const auto all_reals = Utilities::MPI::all_gather(comm, master_reals);
       const auto all_ints  = Utilities::MPI::all_gather(comm, master_ints);
+      const unsigned int key_size =
+        std::tuple_size<CellId::binary_type>::value + 1;
       for (unsigned int r = 0; r < all_ints.size(); ++r)
         {
-          if (r == Utilities::MPI::this_mpi_process(comm))
-            own_master_offset = master_faces.size();
-          unsigned int ir = 0;
+          const bool   mine = r == Utilities::MPI::this_mpi_process(comm);
+          unsigned int ir   = 0;
           for (unsigned int ii = 0; ii < all_ints[r].size();)
             {
               MasterFace face;
               face.pair = all_ints[r][ii++];
+              face.key.assign(all_ints[r].begin() + ii,
+                              all_ints[r].begin() + ii + key_size);
+              ii += key_size;
+              const int own_cell = all_ints[r][ii++];
+              face.own_cell      = mine ? own_cell : -1;
               face.dofs.assign(all_ints[r].begin() + ii,
                                all_ints[r].begin() + ii + n_face_nodes * dim);
               ii += n_face_nodes * dim;
@@ -754,6 +787,14 @@ namespace Signorini
               master_faces.push_back(std::move(face));
             }
         }
+      // The gathered order follows the partition; the search (ties between
+      // equally good faces) and the mortar cuts (the first master face that
+      // covers a piece of an overlapped slave face) must not.
+      std::sort(master_faces.begin(),
+                master_faces.end(),
+                [](const MasterFace &a, const MasterFace &b) {
+                  return a.key < b.key;
+                });
       master_lines.clear();
       {
         const auto all_line_ints  = Utilities::MPI::all_gather(comm, line_ints);
@@ -779,6 +820,14 @@ namespace Signorini
           }
       }
       extra.compress();
+      // Vectors over the multipliers alone (weighted gaps, initial
+      // multipliers, nodal fields) hold no u entries: their ghosts are the
+      // multiplier part of 'extra'. A u index there has no owner in such a
+      // vector, and Epetra's import then shifts the ghost values it fills
+      // (garbage at nodes on partition boundaries on 3 ranks).
+      multiplier_ghosts = IndexSet(n_system());
+      multiplier_ghosts.add_indices(extra.get_view(n_u, n_system()), n_u);
+      multiplier_ghosts.compress();
 
       for (unsigned int p = 0; p < n_pairs; ++p)
         if (pairs[p].master == MasterType::body)
@@ -999,9 +1048,7 @@ namespace Signorini
             {
               BoundingBox<dim> query(std::make_pair(x_e, x_e));
               query.extend(0.5 * face_size[p]);
-              std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
-              tree.query(boost::geometry::index::intersects(query),
-                         std::back_inserter(hits));
+              const auto hits = faces_meeting(tree, query);
               // Inside projections first (closest), then the smallest
               // violation within the tolerance.
               double best_inside = std::numeric_limits<double>::max();
@@ -1010,9 +1057,8 @@ namespace Signorini
               FaceProjection<dim> best;
               int                 best_face = -1;
               bool                best_is_inside = false;
-              for (const auto &hit : hits)
+              for (const unsigned int m : hits)
                 {
-                  const unsigned int m = hit.second;
                   if (master_faces[m].pair != p)
                     continue;
                   const auto proj =
@@ -1139,16 +1185,13 @@ namespace Signorini
                     state[face.node_dofs[face.k_node[k] * dim + c]];
               BoundingBox<dim> box(x_slave);
               box.extend(0.5 * face_size[p]);
-              std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
-              tree.query(boost::geometry::index::intersects(box),
-                         std::back_inserter(hits));
               candidates.clear();
               candidate_face.clear();
-              for (const auto &hit : hits)
-                if (master_faces[hit.second].pair == p)
+              for (const auto m : faces_meeting(tree, box))
+                if (master_faces[m].pair == p)
                   {
-                    candidates.push_back(&x_master[hit.second]);
-                    candidate_face.push_back(hit.second);
+                    candidates.push_back(&x_master[m]);
+                    candidate_face.push_back(m);
                   }
               const auto cut =
                 segment_slave_face<dim>(x_slave, candidates, segment_order);
@@ -1319,8 +1362,8 @@ namespace Signorini
       // 1e-8 of the face size) start closed, as where they penetrate; the
       // others keep lambda = 0 (lambda_aug = -rho_n g: open).
       const double touch_tolerance = 1e-8;
-      auto num = writable_vector(owned_multipliers, extra, comm);
-      auto den = writable_vector(owned_multipliers, extra, comm);
+      auto num = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto den = writable_vector(owned_multipliers, multiplier_ghosts, comm);
       for (const auto &point : points)
         {
           const auto &       face = slave_faces[point.face];
@@ -1405,15 +1448,15 @@ namespace Signorini
       // Weighted gap G_l and weight D_l of every node (faces of all ranks).
       // P_l: the paired share of the node (psi >= 0); a node without
       // paired points has no gap and stays free.
-      auto G = writable_vector(owned_multipliers, extra, comm);
-      auto D = writable_vector(owned_multipliers, extra, comm);
-      auto P = writable_vector(owned_multipliers, extra, comm);
+      auto G = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto D = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto P = writable_vector(owned_multipliers, multiplier_ghosts, comm);
       // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
       // component k in the vector of index k (by the node's lambda DoF).
       std::vector<TrilinosWrappers::MPI::Vector> W;
       if (any_friction_node)
         for (unsigned int k = 0; k < dim - 1; ++k)
-          W.push_back(writable_vector(owned_multipliers, extra, comm));
+          W.push_back(writable_vector(owned_multipliers, multiplier_ghosts, comm));
       for (const auto &point : points)
         {
           const auto &face = slave_faces[point.face];
@@ -1438,9 +1481,9 @@ namespace Signorini
       G.compress(VectorOperation::add);
       D.compress(VectorOperation::add);
       P.compress(VectorOperation::add);
-      TrilinosWrappers::MPI::Vector G_read(owned_multipliers, extra, comm);
-      TrilinosWrappers::MPI::Vector D_read(owned_multipliers, extra, comm);
-      TrilinosWrappers::MPI::Vector P_read(owned_multipliers, extra, comm);
+      TrilinosWrappers::MPI::Vector G_read(owned_multipliers, multiplier_ghosts, comm);
+      TrilinosWrappers::MPI::Vector D_read(owned_multipliers, multiplier_ghosts, comm);
+      TrilinosWrappers::MPI::Vector P_read(owned_multipliers, multiplier_ghosts, comm);
       G_read = G;
       D_read = D;
       P_read = P;
@@ -1448,7 +1491,7 @@ namespace Signorini
       for (unsigned int k = 0; k < W.size(); ++k)
         {
           W[k].compress(VectorOperation::add);
-          W_read[k].reinit(owned_multipliers, extra, comm);
+          W_read[k].reinit(owned_multipliers, multiplier_ghosts, comm);
           W_read[k] = W[k];
         }
       unsigned int changed = 0;
@@ -2452,7 +2495,7 @@ namespace Signorini
       std::vector<TrilinosWrappers::MPI::Vector> nodal;
       if (any_node_status)
         for (unsigned int c = 0; c < 2 * dim; ++c)
-          nodal.push_back(writable_vector(owned_multipliers, extra, comm));
+          nodal.push_back(writable_vector(owned_multipliers, multiplier_ghosts, comm));
       for (const auto &point : points)
         {
           const auto &face = slave_faces[point.face];
@@ -2736,8 +2779,8 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector &field,
       TrilinosWrappers::MPI::Vector &      state_owned) const
     {
-      auto num = writable_vector(owned_multipliers, extra, comm);
-      auto den = writable_vector(owned_multipliers, extra, comm);
+      auto num = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto den = writable_vector(owned_multipliers, multiplier_ghosts, comm);
       for (const auto &face : slave_faces)
         for (unsigned int l = 0; l < face.node_local.size(); ++l)
           {
@@ -2779,9 +2822,9 @@ namespace Signorini
         if (slave_active[f])
           cells.push_back(slave_faces[f].cell);
       Utilities::MPI::max(master_active, comm, master_active);
-      for (unsigned int k = 0; k < own_master_cells.size(); ++k)
-        if (master_active[own_master_offset + k] != 0)
-          cells.push_back(own_master_cells[k]);
+      for (unsigned int m = 0; m < master_faces.size(); ++m)
+        if (master_faces[m].own_cell >= 0 && master_active[m] != 0)
+          cells.push_back(own_master_cells[master_faces[m].own_cell]);
       return cells;
     }
 

@@ -83,6 +83,28 @@ namespace Signorini
         return Q;
       }
 
+      // The same convex polygon starting at the vertex lowest along a fixed
+      // oblique direction. Clipping leaves or drops a vertex on a clip line
+      // by round-off, which rotates the vertex list; the fan of triangles
+      // from P[0], and so the points, must not follow that (the round-off
+      // of the iterate differs with the MPI partition). The direction is
+      // oblique so that no two vertices of an axis-aligned piece tie.
+      Polygon
+      canonical(const Polygon &P)
+      {
+        const auto height = [](const Point<2> &x) {
+          return x[0] + 0.6180339887498949 * x[1];
+        };
+        unsigned int first = 0;
+        for (unsigned int i = 1; i < P.size(); ++i)
+          if (height(P[i]) < height(P[first]))
+            first = i;
+        Polygon Q;
+        for (unsigned int i = 0; i < P.size(); ++i)
+          Q.push_back(P[(first + i) % P.size()]);
+        return Q;
+      }
+
       bool
       boxes_overlap(const Polygon &P, const Polygon &Q)
       {
@@ -286,10 +308,19 @@ namespace Signorini
             {
               std::vector<Polygon> still;
               for (const auto &Q : free)
-                if (boxes_overlap(Q, C))
-                  subtract(Q, C, still);
-                else
-                  still.push_back(Q);
+                {
+                  // Q is cut only where C covers a part of it: a master
+                  // face that merely touches Q along an edge (its box
+                  // overlapping Q's by round-off) must not split Q, or the
+                  // pieces, and so the points, follow the round-off of the
+                  // iterate (which differs with the MPI partition).
+                  const Polygon I =
+                    boxes_overlap(Q, C) ? intersect(Q, C) : Polygon();
+                  if (I.size() < 3 || signed_area(I) < sliver)
+                    still.push_back(Q);
+                  else
+                    subtract(Q, C, still);
+                }
               free.swap(still);
             }
           for (auto &Q : free)
@@ -300,7 +331,7 @@ namespace Signorini
       const QWitherdenVincentSimplex<2> triangle(n_points);
       for (const auto &[piece, master] : pieces)
         {
-          const Polygon P = simplified(piece);
+          const Polygon P = canonical(simplified(piece));
           ++result.n_pieces;
           for (unsigned int i = 1; i + 1 < P.size(); ++i)
             {

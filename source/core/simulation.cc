@@ -2165,6 +2165,13 @@ namespace Signorini
           add("contact_force" + name + axis[d], summary[p].force[d]);
         add_text("contact_points" + name + "closed",
                  std::to_string(summary[p].n_contact));
+        if (parameters.contact.pairs[p].friction > 0)
+          {
+            add_text("contact_points" + name + "stick",
+                     std::to_string(summary[p].n_stick));
+            add_text("contact_points" + name + "slip",
+                     std::to_string(summary[p].n_slip));
+          }
         if (summary[p].rigid)
           for (unsigned int d = 0; d < dim; ++d)
             add("obstacle_displacement" + name + axis[d],

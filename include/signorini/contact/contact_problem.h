@@ -435,6 +435,11 @@ namespace Signorini
         std::vector<Point<dim>>              X; // reference node positions
         std::vector<types::global_dof_index> dofs; // node-major, dim each
         Point<dim>                           inside; // reference cell centre
+        // Partition-independent identity (the cell's CellId and the face
+        // number): master_faces is sorted by it, so that the search and the
+        // mortar cuts see the faces in the same order on any rank count.
+        std::vector<unsigned int> key;
+        int own_cell = -1; // index into own_master_cells, -1: another rank's
       };
 
       struct ContactPoint
@@ -704,15 +709,14 @@ namespace Signorini
       unsigned int            n_nodes_total = 0;
       unsigned int            n_pieces      = 0; // mortar pieces (owned faces)
       IndexSet                owned_multipliers, extra;
+      IndexSet multiplier_ghosts; // extra within the multiplier blocks
 
       std::map<types::global_dof_index, NodeInfo> nodes; // key: x-dof
       std::vector<SlaveFace>                      slave_faces;
       std::vector<MasterFace>                     master_faces;
-      // The master faces this rank owns, in their order within
-      // master_faces from index own_master_offset on.
+      // The cells of the master faces this rank owns (MasterFace::own_cell).
       std::vector<typename DoFHandler<dim>::active_cell_iterator>
-                   own_master_cells;
-      unsigned int own_master_offset = 0;
+        own_master_cells;
       // Constraint lines of master DoFs, from their owners.
       std::vector<std::pair<types::global_dof_index,
                             std::vector<std::pair<types::global_dof_index,
