@@ -137,27 +137,41 @@ namespace
     const unsigned int order = exact_segment_order<dim>(degree);
     const auto cut = segment_slave_face<dim>(slave, candidates, order);
 
-    // Stability: the same faces moved by round-off (1e-16 relative, as the
-    // iterates of different MPI partitions differ) give the same points.
+    // Stability: the same faces moved by round-off give the same points.
+    // The iterates of different MPI partitions (and of two runs on several
+    // ranks: the distributed direct solver is not bit-reproducible) differ
+    // by 1e-8 relative in the solution, which moves the nodes by far less
+    // than 1e-12 of the face size here; 1e-12 is the noise tested.
     // Clipping along coincident or touching edges decides by round-off
     // whether a vertex stays; the pieces, their fans and so the points must
     // not follow such decisions.
     bool               stable = true;
     std::mt19937       random(42);
-    std::uniform_real_distribution<double> noise(-2e-16, 2e-16);
+    std::uniform_real_distribution<double> noise(-1e-12, 1e-12);
     for (unsigned int trial = 0; trial < 20; ++trial)
       {
+        // A smooth random field, so that a node shared by two faces moves
+        // once (as a node of a mesh does).
+        Tensor<1, dim> amplitude, wave;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            amplitude[d] = noise(random);
+            wave[d]      = 1e12 * noise(random) + 3;
+          }
+        const auto move = [&](Point<dim> x) {
+          for (unsigned int d = 0; d < dim; ++d)
+            x[d] += amplitude[d] * std::sin(wave * x + d);
+          return x;
+        };
         auto moved_slave = slave;
         for (auto &x : moved_slave)
-          for (unsigned int d = 0; d < dim; ++d)
-            x[d] += noise(random) * (1 + std::abs(x[d]));
+          x = move(x);
         auto moved_masters = masters;
         std::vector<const std::vector<Point<dim>> *> moved_candidates;
         for (auto &m : moved_masters)
           {
             for (auto &x : m)
-              for (unsigned int d = 0; d < dim; ++d)
-                x[d] += noise(random) * (1 + std::abs(x[d]));
+              x = move(x);
             moved_candidates.push_back(&m);
           }
         const auto moved =
@@ -165,13 +179,27 @@ namespace
         if (moved.points.size() != cut.points.size() ||
             moved.n_pieces != cut.n_pieces)
           {
+            std::cerr << "trial " << trial << ": " << moved.points.size()
+                      << " points in " << moved.n_pieces << " pieces, was "
+                      << cut.points.size() << " in " << cut.n_pieces
+                      << std::endl;
             stable = false;
             continue;
           }
         for (unsigned int q = 0; q < cut.points.size(); ++q)
+          if (moved.master[q] != cut.master[q] ||
+              moved.points[q].distance(cut.points[q]) >= 1e-9)
+            {
+              std::cerr << "trial " << trial << ", point " << q << ": "
+                        << moved.points[q] << " (master " << moved.master[q]
+                        << "), was " << cut.points[q] << " (master "
+                        << cut.master[q] << ")" << std::endl;
+              break;
+            }
+        for (unsigned int q = 0; q < cut.points.size(); ++q)
           stable &= moved.master[q] == cut.master[q] &&
-                    moved.points[q].distance(cut.points[q]) < 1e-12 &&
-                    std::abs(moved.weights[q] - cut.weights[q]) < 1e-12;
+                    moved.points[q].distance(cut.points[q]) < 1e-9 &&
+                    std::abs(moved.weights[q] - cut.weights[q]) < 1e-9;
       }
 
     // M from the segmentation: master xi from the closest-point projection
@@ -251,8 +279,8 @@ namespace
               << "  slave area " << std::setprecision(10) << area_exact
               << ", relative error < 1e-12: "
               << (area_error <= 1e-12 ? "yes" : "NO") << std::endl
-              << "  same points (1e-12) after round-off moves of the "
-                 "nodes (20 trials): "
+              << "  same points (1e-9) after moves of the nodes by 1e-12 "
+                 "(20 trials): "
               << (stable ? "yes" : "NO") << std::endl;
     std::cerr << dim << "D Q" << degree << ": error " << error / scale
               << ", area error " << area_error << std::endl;

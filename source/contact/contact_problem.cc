@@ -2661,7 +2661,14 @@ namespace Signorini
           csv << "," << (r.paired ? r.gap : std::nan(""));
           for (unsigned int k = 0; k < dim - 1; ++k)
             csv << "," << r.slip[k];
-          csv << "," << to_string(r.status) << "\n";
+          // A closed point of a frictionless pair has no stick or slip.
+          const bool frictionless =
+            parameters.contact.pairs[r.pair].friction == 0;
+          csv << ","
+              << (frictionless && r.status != PointStatus::free ?
+                    "contact" :
+                    to_string(r.status))
+              << "\n";
         }
     }
 

@@ -12,9 +12,20 @@ namespace Signorini
   {
     namespace
     {
-      // Pieces (or overlaps) below this measure of the unit face are
-      // round-off slivers of coincident edges and are dropped.
-      constexpr double sliver = 1e-13;
+      // Lengths (2D) and areas (3D) on the unit slave face below this,
+      // and vertices closer than this or this close to the line through
+      // their neighbours, are round-off of coincident or nearly coincident
+      // edges (matching meshes, hanging nodes, a curved slave carrying the
+      // master vertices) and are dropped. Whether clipping leaves such a
+      // sliver follows the round-off of the iterate, which differs with the
+      // MPI partition and, on several ranks, from run to run (the
+      // distributed direct solver is not bit-reproducible: 1e-8 relative in
+      // u, about 1e-12 of the face for the nodes), amplified by
+      // intersections of nearly parallel edges (seen: vertex pairs 1e-11
+      // apart on one run, none on the next). 1e-9 is far above that and
+      // far below what matters: a dropped piece changes the face's
+      // integrals by less than 1e-9 of the face.
+      constexpr double sliver = 1e-9;
 
       using Polygon = std::vector<Point<2>>;
 
@@ -57,9 +68,8 @@ namespace Signorini
         return out;
       }
 
-      // Drops repeated and collinear vertices (clipping along coincident
-      // edges leaves them), so that a piece has as few triangles as its
-      // shape needs.
+      // Drops repeated and (nearly) collinear vertices, so that a piece has
+      // as few triangles as its shape needs.
       Polygon
       simplified(const Polygon &P)
       {
@@ -72,8 +82,10 @@ namespace Signorini
                 const unsigned int n = Q.size();
                 const Point<2> &a = Q[(i + n - 1) % n], &b = Q[i],
                                &c = Q[(i + 1) % n];
-                if (std::abs(cross(b - a, c - b)) < 1e-12 ||
-                    (b - a).norm_square() < 1e-24)
+                const double ac = (c - a).norm();
+                const bool   on_line =
+                  ac < sliver || std::abs(cross(b - a, c - a)) < sliver * ac;
+                if ((b - a).norm() < sliver || on_line)
                   {
                     Q.erase(Q.begin() + i);
                     changed = true;

@@ -474,7 +474,8 @@ namespace Signorini
   LoadSteppingParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Load stepping");
-    step_times = to_doubles(prm.get("Step times"));
+    step_times     = to_doubles(prm.get("Step times"));
+    explicit_times = !step_times.empty();
     if (step_times.empty())
       {
         const unsigned int n = prm.get_integer("Number of steps");

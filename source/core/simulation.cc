@@ -78,6 +78,10 @@ namespace Signorini
     std::string
     format(const double value, const int digits = 6)
     {
+      if (std::isnan(value))
+        return "NaN";
+      if (std::isinf(value))
+        return value > 0 ? "inf" : "-inf";
       std::ostringstream s;
       // Values at round-off level are printed as 0 so that compared output
       // does not depend on the number of MPI ranks.
@@ -107,6 +111,49 @@ namespace Signorini
     {
       return std::sqrt(block[0] * block[0] + block[1] * block[1] +
                        block[2] * block[2]);
+    }
+
+    // Why a Newton solve used up its iterations, from its residuals over
+    // the force level, the status changes of the last iterate and the
+    // rigid motions nothing held at the last solve.
+    std::pair<NewtonFailure, std::string>
+    newton_failure_reason(const std::vector<double> &r,
+                          const unsigned int         n_changed,
+                          const std::string &        free_motions,
+                          const unsigned int         max_iterations)
+    {
+      std::ostringstream s;
+      s << std::scientific << std::setprecision(2);
+      const double last = r.empty() ? 0. : r.back();
+      // Stagnation: the last residual is not below half the smallest of
+      // the few iterates before it.
+      const std::size_t n = r.size(), k = std::max<std::size_t>(3, n / 4);
+      const bool        stalled =
+        n > k && last > 0.5 * *std::min_element(r.end() - k - 1, r.end() - 1);
+      NewtonFailure kind = NewtonFailure::iteration_limit;
+      if (n_changed > 0)
+        {
+          kind = NewtonFailure::statuses;
+          s << "the contact statuses still change at the last Newton "
+               "iterate ("
+            << n_changed << " changed, |R|/|F| = " << last << ")";
+        }
+      else if (stalled)
+        {
+          kind = NewtonFailure::stagnation;
+          s << "the residual stagnates at |R|/|F| = " << last
+            << " with settled contact statuses";
+        }
+      else
+        s << "'Newton/Maximum iterations' (" << max_iterations
+          << ") was reached while the residual still decreased (|R|/|F| = "
+          << last << ")";
+      if (!free_motions.empty())
+        s << "; at the last iterate nothing held " << free_motions
+          << " (no Dirichlet condition along it and no closed point "
+             "sticking: under force control a tangential load above mu "
+             "times the normal force has no equilibrium)";
+      return {kind, s.str()};
     }
   } // namespace
 
@@ -301,6 +348,11 @@ namespace Signorini
     if (!contact->active())
       make_sparsity();
     linear_solver->set_null_space(dof_handler, locally_owned);
+    rigid_modes.setup(dof_handler,
+                      constraints_update,
+                      owned_system,
+                      parameters.axisymmetric,
+                      mpi_communicator);
     if (contact->active())
       linear_solver->set_multipliers(dof_handler.n_dofs(),
                                      contact->locally_owned_multipliers());
@@ -790,8 +842,10 @@ namespace Signorini
                   << std::endl;
           }
       }
-    pcout << "  geometric loop not converged after "
-          << c.max_geometric_iterations << " iterations" << std::endl;
+    newton_failure_kind = NewtonFailure::geometric;
+    newton_failure      = "the geometric loop did not converge in " +
+                     std::to_string(c.max_geometric_iterations) +
+                     " pairings ('Contact/Maximum geometric iterations')";
     return false;
   }
 
@@ -953,6 +1007,7 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector search_base, search_update;
     double                        search_residual = 0;
     exact_at_end    = false;
+    std::vector<double> residuals; // relative, per iterate (failure reason)
     for (iterations = 0; iterations <= parameters.newton.max_iterations;
          ++iterations)
       {
@@ -1088,7 +1143,10 @@ namespace Signorini
         // digits of the ratio are round-off too.
         const auto shown = [&](const double r) {
           std::ostringstream text;
-          if (relative(r) > 1e6)
+          if (!std::isfinite(r) || !std::isfinite(force_scale))
+            text << (std::isnan(r) || std::isnan(force_scale) ? "NaN" :
+                                                                 "inf");
+          else if (relative(r) > 1e6)
             text << ">1.0e+06";
           else
             text << std::scientific << std::setprecision(2) << relative(r);
@@ -1140,7 +1198,15 @@ namespace Signorini
           newton_rows.push_back(row.str());
         }
         if (!std::isfinite(residual))
-          return false;
+          {
+            newton_failure_kind = NewtonFailure::non_finite;
+            newton_failure =
+              "the residual is not finite (" + format(residual, 2) +
+              ") at Newton iterate " + std::to_string(iterations) +
+              non_finite_loads(history_time);
+            return false;
+          }
+        residuals.push_back(relative(residual));
         if (parameters.newton.check_jacobian && contact->active())
           check_jacobian();
         if (converged)
@@ -1187,6 +1253,7 @@ namespace Signorini
         assemble(true);
         if (contact->active())
           contact->clear_releases();
+        hold_free_motions(iterations);
         TimerOutput::Scope t(timer, "linear solve");
         TrilinosWrappers::MPI::Vector update(owned_system, mpi_communicator);
         const unsigned int krylov =
@@ -1208,7 +1275,136 @@ namespace Signorini
         update_solution();
         step_exact = krylov == 0 && n_early == 0;
       }
+    std::tie(newton_failure_kind, newton_failure) =
+      newton_failure_reason(residuals,
+                            contact->active() ? contact_statistics.n_changed :
+                                                0,
+                            free_motions,
+                            parameters.newton.max_iterations);
     return false;
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::hold_free_motions(const unsigned int iteration)
+  {
+    free_motions.clear();
+    const auto free = rigid_modes.find(system_matrix, dof_handler.n_dofs());
+    if (free.empty())
+      return;
+    std::string list;
+    for (const auto &m : free)
+      list += (list.empty() ? "" : "; ") + rigid_modes.describe(m);
+    // Friction can hold the motion once its points have a threshold: at
+    // the first iterate after they close it is zero (formulation.md 3.3),
+    // and while every point slips there is no tangential stiffness. The
+    // motion's share of the update is then set to zero for this solve.
+    const bool friction_may_hold = contact->active() &&
+                                   contact->n_friction_dofs() > 0 &&
+                                   contact_statistics.n_contact > 0;
+    if (!friction_may_hold)
+      throw RunError(
+        "load step " + std::to_string(history_step) + ", Newton iterate " +
+        std::to_string(iteration) + ": nothing holds " + list +
+        " (no Dirichlet condition constrains it and no closed contact point "
+        "resists it), so the linear system is singular. Support the body "
+        "along that motion (a Dirichlet condition on that component, on one "
+        "node if the body must stay free otherwise: 'Boundary "
+        "conditions/Dirichlet k/Node'), drive it by a prescribed "
+        "displacement, or let it start in contact ('Contact/Initial status "
+        "= closed').");
+    rigid_modes.hold(system_matrix, dof_handler.n_dofs(), free);
+    free_motions = list;
+    if (parameters.output.verbosity != Verbosity::quiet)
+      pcout << "    held for this solve (friction without threshold or "
+               "slipping everywhere): "
+            << list << std::endl;
+  }
+
+
+  template <int dim>
+  std::string
+  Simulation<dim>::failure_advice() const
+  {
+    const std::string smaller =
+      parameters.load_stepping.explicit_times ?
+        "more times in 'Load stepping/Step times'" :
+        "more steps ('Load stepping/Number of steps')";
+    switch (newton_failure_kind)
+      {
+        case NewtonFailure::non_finite:
+          return newton_failure.find("is not finite at") != std::string::npos ?
+                   "Give a load expression that is finite over the load "
+                   "path." :
+                   "The loads are finite: the iterate diverged; try " +
+                     smaller + ".";
+        case NewtonFailure::stagnation:
+          return "Either the load has no equilibrium (check it against what "
+                 "the supports and friction can carry) or the iteration is "
+                 "stuck; " +
+                 smaller + " helps only in the second case.";
+        case NewtonFailure::geometric:
+          return "Raise 'Contact/Maximum geometric iterations' or use " +
+                 smaller + ".";
+        default:
+          return "Raise 'Newton/Maximum iterations' or use " + smaller + ".";
+      }
+  }
+
+
+  template <int dim>
+  std::string
+  Simulation<dim>::non_finite_loads(const double t) const
+  {
+    const auto &bc = parameters.boundary_conditions;
+    std::vector<std::pair<std::string, const FunctionParser<dim> *>> loads;
+    for (unsigned int k = 0; k < dirichlet_functions.size(); ++k)
+      loads.emplace_back("Dirichlet " + std::to_string(k + 1),
+                         dirichlet_functions[k].get());
+    for (unsigned int k = 0; k < neumann_functions.size(); ++k)
+      loads.emplace_back("Neumann " + std::to_string(k + 1),
+                         neumann_functions[k].get());
+    (void)bc;
+    std::string text;
+    for (const auto &[name, function] : loads)
+      {
+        // The first vertex of an owned cell where a component is not
+        // finite, reduced to the smallest rank that has one.
+        FunctionParser<dim> &f = const_cast<FunctionParser<dim> &>(*function);
+        const double         t_before = f.get_time();
+        f.set_time(t);
+        std::vector<double> where(dim + 1, std::numeric_limits<double>::max());
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() && where[0] == std::numeric_limits<double>::max())
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                bool finite = true;
+                for (unsigned int c = 0; c < f.n_components; ++c)
+                  finite = finite && std::isfinite(f.value(cell->vertex(v), c));
+                if (!finite)
+                  {
+                    where[0] = Utilities::MPI::this_mpi_process(mpi_communicator);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      where[d + 1] = cell->vertex(v)[d];
+                    break;
+                  }
+              }
+        f.set_time(t_before);
+        const auto all = Utilities::MPI::all_gather(mpi_communicator, where);
+        for (const auto &w : all)
+          if (w[0] != std::numeric_limits<double>::max())
+            {
+              text += "; subsection 'Boundary conditions/" + name +
+                      "', parameter 'Values' is not finite at t = " +
+                      format(t, 4) + ", x = (";
+              for (unsigned int d = 0; d < dim; ++d)
+                text += (d ? ", " : "") + format(w[d + 1], 4);
+              text += ")";
+              break;
+            }
+      }
+    return text;
   }
 
 
@@ -2011,7 +2207,14 @@ namespace Signorini
     for (auto &[m, f] : force)
       {
         for (auto &v : f)
-          v = Utilities::MPI::sum(v, mpi_communicator);
+          {
+            v = Utilities::MPI::sum(v, mpi_communicator);
+            // Axisymmetric (x = r): the radial nodal forces of a ring cancel
+            // over the circumference; only the axial ones add up to a net
+            // force.
+            if (parameters.axisymmetric)
+              v[0] = 0;
+          }
         // An unloaded body (open contact, rigid motion) is measured
         // against the force level of the step instead of its round-off.
         const double scale =
@@ -2027,6 +2230,7 @@ namespace Signorini
             ids += (ids.empty() ? "" : ", ") + std::to_string(k);
         std::ostringstream text;
         text << "force balance of the body of material " << ids
+             << (parameters.axisymmetric ? " (axial)" : "")
              << ": |F_load + F_support + F_contact| = " << format(e, 2)
              << " of max(|F_load|, |F_support|, |F_contact|) = "
              << format(scale, 4) << " N (contact "
@@ -2385,11 +2589,13 @@ namespace Signorini
                       "between t = " + format(t_done, 4) + " and t = " +
                       format(t_target, 4) + " after " +
                       std::to_string(parameters.load_stepping.max_cuts) +
-                      " step cuts. The results of the completed steps are in '" +
-                      parameters.output.directory +
-                      "'. Raise 'Newton/Maximum iterations' or 'Load "
-                      "stepping/Number of steps'.");
-                  pcout << "  step not converged: cut to t = "
+                      " step cuts: " + newton_failure +
+                      ". The results of the completed steps are in '" +
+                      parameters.output.directory + "'. " +
+                      failure_advice());
+                  pcout << "  step not converged ("
+                        << newton_failure.substr(0, newton_failure.find("; "))
+                        << "): cut to t = "
                         << format(0.5 * (t_done + t_target), 4) << std::endl;
                   t_target = 0.5 * (t_done + t_target);
                 }

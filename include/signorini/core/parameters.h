@@ -146,6 +146,7 @@ namespace Signorini
     std::vector<double> step_times; // end times of the steps, increasing
     unsigned int        max_cuts;
     bool                extrapolate; // Predictor = extrapolated
+    bool explicit_times = false; // the user gave 'Step times'
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

@@ -16,6 +16,7 @@
 #include <signorini/core/parameters.h>
 #include <signorini/material/elastic_material.h>
 #include <signorini/solver/linear_solver.h>
+#include <signorini/solver/rigid_modes.h>
 
 #include <array>
 #include <map>
@@ -33,6 +34,16 @@
 namespace Signorini
 {
   using namespace dealii;
+
+  /** Why a Newton solve (or a load step's geometric loop) failed. */
+  enum class NewtonFailure
+  {
+    non_finite,      // NaN or inf in the residual
+    statuses,        // contact statuses still changing
+    stagnation,      // settled statuses, residual no longer decreasing
+    iteration_limit, // still converging when the iterations ran out
+    geometric        // the pairing loop did not settle
+  };
 
   /** A run that must stop (not a user input problem): says where and why. */
   class RunError : public std::runtime_error
@@ -122,6 +133,20 @@ namespace Signorini
                 const double                         residual_full);
     void
     check_jacobian();
+    /** Before a solve: the rigid motions the assembled Jacobian does not
+     * hold. With closed frictional points (friction that has no threshold
+     * yet, or slips everywhere) they are held by springs for this solve;
+     * otherwise the system is singular and the run stops (RunError). */
+    void
+    hold_free_motions(const unsigned int iteration);
+    /** The load expressions that are not finite at time @p t at a mesh
+     * vertex (for the message of a non-finite residual). */
+    std::string
+    non_finite_loads(const double t) const;
+    /** What to change after a failure of kind newton_failure_kind, naming
+     * the parameters the user set (Number of steps or Step times). */
+    std::string
+    failure_advice() const;
     void
     update_solution(); // u part of the system state -> solution
     double
@@ -206,6 +231,14 @@ namespace Signorini
     // step (see newton()).
     bool   exact_at_end    = false;
     double residual_at_end = 0; // its residual over the force level
+    // Rigid motions of the bodies; those the Jacobian of the last solve did
+    // not hold (held by springs for that solve, see hold_free_motions()).
+    Solver::RigidModes<dim> rigid_modes;
+    std::string             free_motions;
+    // Why the last newton() or solve_load_step() call failed (for the
+    // message when the step cuts are used up).
+    std::string   newton_failure;
+    NewtonFailure newton_failure_kind = NewtonFailure::iteration_limit;
     double model_size = 0; // bounding-box diagonal of the mesh [m]
     unsigned int maximum_level = 0; // adaptivity: finest level (0: not set)
     std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
