@@ -9,6 +9,7 @@
 
 #include <signorini/contact/contact_problem.h>
 #include <signorini/contact/segmentation.h>
+#include <signorini/postprocess/output_files.h>
 
 #include <algorithm>
 #include <cmath>
@@ -2631,45 +2632,46 @@ namespace Signorini
 
 
     template <int dim>
-    void
+    std::string
     ContactProblem<dim>::write_csv(const std::string &filename) const
     {
       const auto records = gather_points();
       if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
-      std::ofstream csv(filename);
-      const char *  axis[] = {"x", "y", "z"};
-      csv << "pair";
-      for (unsigned int d = 0; d < dim; ++d)
-        csv << "," << axis[d];
-      csv << ",p";
-      for (unsigned int k = 0; k < dim - 1; ++k)
-        csv << ",traction_t" << k + 1;
-      csv << ",gap";
-      for (unsigned int k = 0; k < dim - 1; ++k)
-        csv << ",slip_t" << k + 1;
-      csv << ",status\n";
-      csv << std::setprecision(10);
-      for (const auto &r : records)
-        {
-          csv << r.pair + 1;
-          for (unsigned int d = 0; d < dim; ++d)
-            csv << "," << r.x[d];
-          csv << "," << r.p;
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            csv << "," << r.traction[k];
-          csv << "," << (r.paired ? r.gap : std::nan(""));
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            csv << "," << r.slip[k];
-          // A closed point of a frictionless pair has no stick or slip.
-          const bool frictionless =
-            parameters.contact.pairs[r.pair].friction == 0;
-          csv << ","
-              << (frictionless && r.status != PointStatus::free ?
-                    "contact" :
-                    to_string(r.status))
-              << "\n";
-        }
+        return "";
+      return Postprocess::write_atomically(filename, [&](std::ostream &csv) {
+        const char *  axis[] = {"x", "y", "z"};
+        csv << "pair";
+        for (unsigned int d = 0; d < dim; ++d)
+          csv << "," << axis[d];
+        csv << ",p";
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          csv << ",traction_t" << k + 1;
+        csv << ",gap";
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          csv << ",slip_t" << k + 1;
+        csv << ",status\n";
+        csv << std::setprecision(10);
+        for (const auto &r : records)
+          {
+            csv << r.pair + 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              csv << "," << r.x[d];
+            csv << "," << r.p;
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              csv << "," << r.traction[k];
+            csv << "," << (r.paired ? r.gap : std::nan(""));
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              csv << "," << r.slip[k];
+            // A closed point of a frictionless pair has no stick or slip.
+            const bool frictionless =
+              parameters.contact.pairs[r.pair].friction == 0;
+            csv << ","
+                << (frictionless && r.status != PointStatus::free ?
+                      "contact" :
+                      to_string(r.status))
+                << "\n";
+          }
+      });
     }
 
 

@@ -1691,6 +1691,7 @@ namespace Signorini
     const auto slash = filename.find_last_of('/');
     parameters.input_directory =
       slash == std::string::npos ? "." : filename.substr(0, slash);
+    parameters.input_file = filename;
     return parameters;
   }
 

@@ -2285,19 +2285,59 @@ namespace Signorini
           data_out.add_data_vector(scalar_dofs, vector, name);
       }
     data_out.build_patches(fe.degree);
-    const std::string name = data_out.write_vtu_with_pvtu_record(
-      parameters.output.directory + "/", "solution", step, mpi_communicator, 4);
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    write_solution_files(data_out, step, time);
+  }
+
+
+  // The names of DataOut::write_vtu_with_pvtu_record(), which writes in
+  // place and leaves a truncated file behind a kill or a full disk: here
+  // every file goes through a temporary name, each rank's piece first,
+  // then (rank 0, once every piece is in place) the step's PVTU record,
+  // then the PVD list, which so names complete steps only.
+  template <int dim>
+  void
+  Simulation<dim>::write_solution_files(const DataOut<dim> &data_out,
+                                        const unsigned int  step,
+                                        const double        time)
+  {
+    const unsigned int rank =
+      Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int n_ranks =
+      Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const unsigned int digits =
+      Utilities::needed_digits(std::max(0, static_cast<int>(n_ranks) - 1));
+    const std::string stem = "solution_" + Utilities::int_to_string(step, 4);
+    const auto        piece = [&](const unsigned int r) {
+      return stem + "." + Utilities::int_to_string(r, digits) + ".vtu";
+    };
+    const std::string directory = parameters.output.directory + "/";
+    check_output(Postprocess::write_atomically(
+      directory + piece(rank),
+      [&](std::ostream &out) { data_out.write_vtu(out); }));
+    std::string failure;
+    if (rank == 0)
       {
-        pvtu_records.emplace_back(time, name);
-        std::ofstream pvd(parameters.output.directory + "/solution.pvd");
-        DataOutBase::write_pvd_record(pvd, pvtu_records);
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          pieces.push_back(piece(r));
+        failure = Postprocess::write_atomically(
+          directory + stem + ".pvtu",
+          [&](std::ostream &out) { data_out.write_pvtu_record(out, pieces); });
+        if (failure.empty())
+          {
+            pvtu_records.emplace_back(time, stem + ".pvtu");
+            failure = Postprocess::write_atomically(
+              directory + "solution.pvd", [&](std::ostream &out) {
+                DataOutBase::write_pvd_record(out, pvtu_records);
+              });
+          }
       }
+    check_output(failure);
   }
 
 
   template <int dim>
-  void
+  std::string
   Simulation<dim>::write_statistics(const unsigned int step,
                                     const double       time,
                                     const unsigned int newton_iterations)
@@ -2381,8 +2421,6 @@ namespace Signorini
             add("obstacle_displacement" + name + axis[d],
                 summary[p].obstacle_displacement[d]);
       }
-    statistics_rows.push_back(row);
-
     pcout << "  Newton iterations: " << newton_iterations << "\n";
     if (parameters.linear_solver.type != LinearSolverType::direct)
       {
@@ -2452,30 +2490,111 @@ namespace Signorini
       }
     pcout << std::flush;
 
+    // statistics.csv starts with the header at the first completed step
+    // (its columns follow the scene's conditions and pairs).
+    const auto line = [](const std::vector<std::string> &fields) {
+      std::string text;
+      for (unsigned int c = 0; c < fields.size(); ++c)
+        text += (c ? "," : "") + fields[c];
+      return text + "\n";
+    };
+    return (header ? line(statistics_header) : std::string()) + line(row);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::append_newton_history()
+  {
+    // Every Newton iterate, including failed attempts before a step cut
+    // (their time is the cut step's target), residuals relative to the
+    // force scale as on screen.
+    std::string failure;
+    if (history_file.is_open())
+      {
+        std::string lines;
+        for (const auto &r : newton_rows)
+          lines += r + "\n";
+        failure = history_file.append(lines);
+      }
+    newton_rows.clear();
+    check_output(failure);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::append_statistics(const std::string &lines)
+  {
+    std::string failure;
     if (parameters.output.write_csv &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      failure = statistics_file.is_open() ?
+                  statistics_file.append(lines) :
+                  statistics_file.open(parameters.output.directory +
+                                         "/statistics.csv",
+                                       lines);
+    check_output(failure);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::check_output(const std::string &failure) const
+  {
+    const std::string first =
+      Postprocess::first_failure(failure, mpi_communicator);
+    if (!first.empty())
+      throw RunError(first + ". The result files on disk are complete (up "
+                     "to the last step written); make room in '" +
+                     parameters.output.directory +
+                     "' or choose another 'Output/Directory'.");
+  }
+
+
+  // Results of an earlier run in the directory would be mixed with this
+  // run's (more steps, other ranks): this program's own result files are
+  // removed first, and said so. The echo never replaces the input file.
+  template <int dim>
+  void
+  Simulation<dim>::prepare_output()
+  {
+    const std::string &directory = parameters.output.directory;
+    std::string        failure;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
-        std::ofstream csv(parameters.output.directory + "/statistics.csv");
-        for (unsigned int c = 0; c < statistics_header.size(); ++c)
-          csv << (c ? "," : "") << statistics_header[c];
-        csv << "\n";
-        for (const auto &r : statistics_rows)
-          {
-            for (unsigned int c = 0; c < r.size(); ++c)
-              csv << (c ? "," : "") << r[c];
-            csv << "\n";
-          }
-        // Every Newton iterate, including failed attempts before a step
-        // cut (their time is the cut step's target), residuals relative to
-        // the force scale as on screen.
-        std::ofstream history(parameters.output.directory +
-                              "/newton_history.csv");
-        history << "step,time,geometric_iteration,newton_iteration,r_u,"
-                   "r_lambda,r_Lambda,n_contact,n_stick,n_slip,n_changed,"
-                   "n_reversed,n_cycling,n_frozen,converged\n";
-        for (const auto &r : newton_rows)
-          history << r << "\n";
+        std::error_code error;
+        std::filesystem::create_directories(directory, error);
+        if (error)
+          failure = "cannot create the output directory '" + directory +
+                    "': " + error.message();
+        const unsigned int n_removed =
+          failure.empty() ?
+            Postprocess::remove_earlier_results(directory, failure) :
+            0;
+        if (n_removed > 0)
+          sout << "Removed " << n_removed
+               << " result file(s) of an earlier run from '" << directory
+               << "'" << std::endl;
+        const std::string echo =
+          Postprocess::echo_filename(directory, parameters.input_file);
+        if (echo != directory + "/parameters.prm")
+          sout << "Note: '" << directory
+               << "/parameters.prm' is the input file: the parameters are "
+                  "echoed to '"
+               << echo << "'" << std::endl;
+        if (failure.empty())
+          failure = Postprocess::write_atomically(echo, [&](std::ostream &out) {
+            prm.print_parameters(out, ParameterHandler::ShortPRM);
+          });
+        if (failure.empty() && parameters.output.write_csv)
+          failure = history_file.open(
+            directory + "/newton_history.csv",
+            "step,time,geometric_iteration,newton_iteration,r_u,r_lambda,"
+            "r_Lambda,n_contact,n_stick,n_slip,n_changed,n_reversed,"
+            "n_cycling,n_frozen,converged\n");
       }
+    check_output(failure);
   }
 
 
@@ -2507,13 +2626,7 @@ namespace Signorini
             << contact->n_friction_dofs() << " (total "
             << contact->n_system() << ")" << std::endl;
 
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      {
-        std::filesystem::create_directories(parameters.output.directory);
-        std::ofstream echo(parameters.output.directory + "/parameters.prm");
-        prm.print_parameters(echo, ParameterHandler::ShortPRM);
-      }
-    MPI_Barrier(mpi_communicator);
+    prepare_output();
 
     const auto &times = parameters.load_stepping.step_times;
     double      t_done = 0;
@@ -2577,6 +2690,9 @@ namespace Signorini
                 {
                   // Failed attempts cost iterations too: they count.
                   total_iterations += iterations;
+                  // Their iterates go to newton_history.csv now: the
+                  // retry may be killed, or the run stop below.
+                  append_newton_history();
                   state = last_converged;
                   update_solution();
                   // Back to the initial state: the retry needs the initial
@@ -2638,15 +2754,20 @@ namespace Signorini
         compute_reference_errors(times[step - 1]);
         if (contact->active())
           check_contact_references(times[step - 1]);
-        write_statistics(step, times[step - 1], total_iterations);
+        append_newton_history();
+        const std::string statistics_lines =
+          write_statistics(step, times[step - 1], total_iterations);
         output_results(step, times[step - 1]);
         if (contact->active() && parameters.output.write_csv)
           {
             std::ostringstream name;
             name << parameters.output.directory << "/contact_"
                  << std::setw(4) << std::setfill('0') << step << ".csv";
-            contact->write_csv(name.str());
+            check_output(contact->write_csv(name.str()));
           }
+        // The step's line in statistics.csv last: a step listed there has
+        // all its files on disk.
+        append_statistics(statistics_lines);
         // 'Steps = between': the mesh follows the converged state; the
         // next step starts on it from the transferred state (its
         // increment: the extrapolated predictor's).

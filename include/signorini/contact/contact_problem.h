@@ -360,8 +360,10 @@ namespace Signorini
       std::vector<PointRecord>
       gather_points() const;
 
-      /** Writes the per-step slave-surface CSV (rank 0). */
-      void
+      /** Writes the per-step slave-surface CSV (collective; rank 0 writes,
+       * under a temporary name renamed into place). Returns "" or why the
+       * write failed (rank 0). */
+      std::string
       write_csv(const std::string &filename) const;
 
       /**

@@ -355,6 +355,9 @@ namespace Signorini
     OutputParameters            output;
     ReferenceParameters         reference;
     std::string                 input_directory = "."; // for relative mesh paths
+    // The parameter file read (empty: parameters from a string); the
+    // parameter echo must not overwrite it.
+    std::string                 input_file;
 
     static void declare_parameters(ParameterHandler &prm, const Counts &counts);
     void        parse_parameters(ParameterHandler &prm, const Counts &counts);

@@ -11,10 +11,12 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/numerics/data_out.h>
 
 #include <signorini/contact/contact_problem.h>
 #include <signorini/core/parameters.h>
 #include <signorini/material/elastic_material.h>
+#include <signorini/postprocess/output_files.h>
 #include <signorini/solver/linear_solver.h>
 #include <signorini/solver/rigid_modes.h>
 
@@ -163,12 +165,33 @@ namespace Signorini
     compute_reactions();
     void
     compute_reference_errors(const double time);
+    /** Output directory of the run: earlier results removed, parameters
+     * echoed, newton_history.csv started. */
+    void
+    prepare_output();
     void
     output_results(const unsigned int step, const double time);
+    /** The step's VTU pieces, its PVTU record and the PVD list. */
     void
+    write_solution_files(const DataOut<dim> &data_out,
+                         const unsigned int  step,
+                         const double        time);
+    /** Prints the step's statistics; returns its statistics.csv line. */
+    std::string
     write_statistics(const unsigned int step,
                      const double       time,
                      const unsigned int newton_iterations);
+    /** Appends the Newton rows since the last call to newton_history.csv. */
+    void
+    append_newton_history();
+    /** Appends the step's @p lines to statistics.csv (the first call
+     * creates it; @p lines then start with the header). */
+    void
+    append_statistics(const std::string &lines);
+    /** Collective: a failed write on any rank (@p failure, "" if none
+     * here) stops every rank with a RunError naming the file. */
+    void
+    check_output(const std::string &failure) const;
 
     const Parameters &      parameters;
     const ParameterHandler &prm;
@@ -250,11 +273,13 @@ namespace Signorini
     std::vector<std::string>             statistics_header;
     ReferenceErrors                  errors;
     std::vector<std::pair<double, std::string>> pvtu_records;
-    std::vector<std::vector<std::string>>       statistics_rows;
     // Newton history for newton_history.csv: one row per iterate, and
     // where the iterate belongs (load step, target time, geometric
-    // iteration).
+    // iteration); the rows not yet appended to the file.
     std::vector<std::string> newton_rows;
+    // statistics.csv and newton_history.csv (rank 0, Write CSV): appended
+    // and flushed once per step.
+    Postprocess::AppendFile statistics_file, history_file;
     // Anti-cycling and step-cut counts of the current load step, and the
     // Newton iterations of every step (run summary).
     unsigned int cycle_detections = 0, points_frozen = 0, points_released = 0,
