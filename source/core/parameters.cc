@@ -1,9 +1,11 @@
 #include <deal.II/base/utilities.h>
 
+#include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numeric>
 #include <regex>
@@ -377,11 +379,16 @@ namespace Signorini
                       "Body force per unit volume [N/m^3]: Dimension "
                       "expressions separated by ';' (extra ones ignored), "
                       "functions of x, y, z and t.");
+    // Checked by parse_function_constants(), which names what is wrong
+    // (a Patterns::Map only says that the whole entry does not match).
     prm.declare_entry(
       "Function constants",
       "",
-      Patterns::Map(Patterns::Anything(), Patterns::Double(), 0, 1000, ","),
-      "Named constants usable in every expression, e.g. 'p0: 1e5, R: 0.1'.");
+      Patterns::Anything(),
+      "Named constants usable in every expression, e.g. 'p0: 1e5, R: 0.1'. "
+      "A name starts with a letter, followed by letters, digits or "
+      "underscores, and is neither x, y, z, t nor a built-in function "
+      "name (sin, exp, if, ...); a value is a number.");
     for (unsigned int k = 1; k <= counts.n_dirichlet; ++k)
       {
         prm.enter_subsection("Dirichlet " + std::to_string(k));
@@ -404,13 +411,7 @@ namespace Signorini
   {
     prm.enter_subsection("Boundary conditions");
     body_force = split_expressions(prm.get("Body force"));
-    constants.clear();
-    for (const auto &entry :
-         Utilities::split_string_list(prm.get("Function constants"), ','))
-      {
-        const auto kv = Utilities::split_string_list(entry, ':');
-        constants[kv[0]] = Utilities::string_to_double(kv[1]);
-      }
+    constants = parse_function_constants(prm.get("Function constants"));
     dirichlet.resize(counts.n_dirichlet);
     for (unsigned int k = 0; k < counts.n_dirichlet; ++k)
       {
@@ -1394,6 +1395,7 @@ namespace Signorini
     output.parse_parameters(prm);
     reference.parse_parameters(prm);
     check_consistency();
+    check_expressions(*this);
   }
 
 
@@ -1412,6 +1414,17 @@ namespace Signorini
             throw InputError(where +
                              ", parameter 'Components': component z does not "
                              "exist for Dimension = 2. Use x and/or y.");
+        // A component listed twice would take the value of its first
+        // expression only, silently.
+        for (unsigned int i = 0; i < d.components.size(); ++i)
+          if (std::count(d.components.begin(),
+                         d.components.begin() + i,
+                         d.components[i]))
+            throw InputError(where + ", parameter 'Components': component " +
+                             std::string(1, "xyz"[d.components[i]]) +
+                             " is listed twice. List each component once, "
+                             "with one expression per listed component in "
+                             "'Values'.");
         if (d.values.size() != d.components.size())
           throw InputError(where + ", parameter 'Values': " +
                            std::to_string(d.values.size()) +
@@ -1613,6 +1626,7 @@ namespace Signorini
                const std::string &source,
                ParameterHandler & prm)
     {
+      check_parameter_text(text, source);
       // Pre-pass: only the counts, ignoring everything else.
       Counts counts;
       {
@@ -1669,6 +1683,7 @@ namespace Signorini
         {
           throw InputError(explain_parse_error(e, text, source));
         }
+      check_numbered_subsections(text, counts, source);
       Parameters parameters;
       parameters.parse_parameters(prm, counts);
       return parameters;
@@ -1679,6 +1694,10 @@ namespace Signorini
   Parameters
   read_parameters(const std::string &filename, ParameterHandler &prm)
   {
+    if (std::filesystem::is_directory(filename))
+      throw InputError("'" + filename +
+                       "' is a directory, not a parameter file. Give the "
+                       "path of a .prm file.");
     std::ifstream in(filename);
     if (!in)
       throw InputError("Cannot open the parameter file '" + filename +

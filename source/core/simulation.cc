@@ -15,6 +15,7 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
 #include <algorithm>
@@ -2524,6 +2525,8 @@ namespace Signorini
   {
     ParameterHandler prm;
     const Parameters parameters = read_parameters(filename, prm);
+    // Before any work: the results must have somewhere to go.
+    check_output_directory(parameters.output.directory, mpi_communicator);
     // Errors leave the Simulation's scope only after it is destroyed, so
     // its TimerOutput does not complain about an exception in flight.
     std::exception_ptr failure;
