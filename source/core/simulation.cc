@@ -19,6 +19,7 @@
 #include <signorini/core/simulation.h>
 
 #include <algorithm>
+#include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 #include <signorini/material/projected_volumetric_strain.h>
 #include <signorini/postprocess/stress_postprocessor.h>
@@ -885,6 +886,7 @@ namespace Signorini
       for (const auto &v : old_vectors)
         pointers.push_back(&v);
       triangulation.prepare_coarsening_and_refinement();
+      check_adapted_size();
       transfer.prepare_for_coarsening_and_refinement(pointers);
       triangulation.execute_coarsening_and_refinement();
     }
@@ -929,6 +931,25 @@ namespace Signorini
             << contact->n_friction_dofs() << " Lambda";
     pcout << std::endl;
     return true;
+  }
+
+
+  // The refinement flagged by adapt_mesh() (prepared) must stay within
+  // 'Geometry/Maximum number of cells'; found during the run, so a RunError.
+  template <int dim>
+  void
+  Simulation<dim>::check_adapted_size() const
+  {
+    const double n_cells = Geometry::cells_after_refinement(triangulation);
+    if (n_cells > parameters.geometry.maximum_cells)
+      throw RunError(
+        "adaptive refinement: the next cycle would make " +
+        Geometry::cell_estimate_text(n_cells, parameters) +
+        ". The results of the completed steps are in '" +
+        parameters.output.directory +
+        "'. Lower 'Adaptive refinement/Cycles' or 'Refinement fraction', "
+        "set its 'Maximum level', or raise 'Geometry/Maximum number of "
+        "cells' if the machine has the memory.");
   }
 
 
