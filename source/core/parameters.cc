@@ -1,9 +1,11 @@
 #include <deal.II/base/utilities.h>
 
+#include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numeric>
 #include <regex>
@@ -225,6 +227,19 @@ namespace Signorini
                       "cell is refined in each local cycle iff it is > 0 at "
                       "the cell centre or at one of its vertices, e.g. "
                       "'0.02 - sqrt(x^2 + y^2)'.");
+    prm.declare_entry(
+      "Maximum number of cells",
+      "1000000",
+      Patterns::Integer(1),
+      "Largest number of active cells the mesh may reach. The cell count is "
+      "estimated before every refinement (a global refinement multiplies it "
+      "by 2^Dimension; a local or adaptive one adds 2^Dimension - 1 per "
+      "marked cell) and a refinement beyond this limit is refused, with the "
+      "estimate, instead of allocating until the machine runs out of "
+      "memory. The default suits a machine of about 32 GB: measured peaks "
+      "are about 7 kB per cell in 2D (Q1, direct solver) and 30 kB per cell "
+      "in 3D (Q1, 200k cells: 6.2 GB, doc/performance.md), more with Q2. "
+      "Raise it on a larger machine.");
     for (unsigned int b = 1; b <= counts.n_bodies; ++b)
       {
         prm.enter_subsection("Body " + std::to_string(b));
@@ -242,6 +257,7 @@ namespace Signorini
     prm.enter_subsection("Geometry");
     global_refinements = prm.get_integer("Global refinements");
     local_refinements  = prm.get_integer("Local refinements");
+    maximum_cells      = prm.get_integer("Maximum number of cells");
     refinement_region  = prm.get("Refinement region");
     bodies.resize(counts.n_bodies);
     for (unsigned int b = 0; b < counts.n_bodies; ++b)
@@ -377,11 +393,16 @@ namespace Signorini
                       "Body force per unit volume [N/m^3]: Dimension "
                       "expressions separated by ';' (extra ones ignored), "
                       "functions of x, y, z and t.");
+    // Checked by parse_function_constants(), which names what is wrong
+    // (a Patterns::Map only says that the whole entry does not match).
     prm.declare_entry(
       "Function constants",
       "",
-      Patterns::Map(Patterns::Anything(), Patterns::Double(), 0, 1000, ","),
-      "Named constants usable in every expression, e.g. 'p0: 1e5, R: 0.1'.");
+      Patterns::Anything(),
+      "Named constants usable in every expression, e.g. 'p0: 1e5, R: 0.1'. "
+      "A name starts with a letter, followed by letters, digits or "
+      "underscores, and is neither x, y, z, t nor a built-in function "
+      "name (sin, exp, if, ...); a value is a number.");
     for (unsigned int k = 1; k <= counts.n_dirichlet; ++k)
       {
         prm.enter_subsection("Dirichlet " + std::to_string(k));
@@ -404,13 +425,7 @@ namespace Signorini
   {
     prm.enter_subsection("Boundary conditions");
     body_force = split_expressions(prm.get("Body force"));
-    constants.clear();
-    for (const auto &entry :
-         Utilities::split_string_list(prm.get("Function constants"), ','))
-      {
-        const auto kv = Utilities::split_string_list(entry, ':');
-        constants[kv[0]] = Utilities::string_to_double(kv[1]);
-      }
+    constants = parse_function_constants(prm.get("Function constants"));
     dirichlet.resize(counts.n_dirichlet);
     for (unsigned int k = 0; k < counts.n_dirichlet; ++k)
       {
@@ -1395,6 +1410,7 @@ namespace Signorini
     output.parse_parameters(prm);
     reference.parse_parameters(prm);
     check_consistency();
+    check_expressions(*this);
   }
 
 
@@ -1413,6 +1429,17 @@ namespace Signorini
             throw InputError(where +
                              ", parameter 'Components': component z does not "
                              "exist for Dimension = 2. Use x and/or y.");
+        // A component listed twice would take the value of its first
+        // expression only, silently.
+        for (unsigned int i = 0; i < d.components.size(); ++i)
+          if (std::count(d.components.begin(),
+                         d.components.begin() + i,
+                         d.components[i]))
+            throw InputError(where + ", parameter 'Components': component " +
+                             std::string(1, "xyz"[d.components[i]]) +
+                             " is listed twice. List each component once, "
+                             "with one expression per listed component in "
+                             "'Values'.");
         if (d.values.size() != d.components.size())
           throw InputError(where + ", parameter 'Values': " +
                            std::to_string(d.values.size()) +
@@ -1614,6 +1641,7 @@ namespace Signorini
                const std::string &source,
                ParameterHandler & prm)
     {
+      check_parameter_text(text, source);
       // Pre-pass: only the counts, ignoring everything else.
       Counts counts;
       {
@@ -1670,6 +1698,7 @@ namespace Signorini
         {
           throw InputError(explain_parse_error(e, text, source));
         }
+      check_numbered_subsections(text, counts, source);
       Parameters parameters;
       parameters.parse_parameters(prm, counts);
       return parameters;
@@ -1680,6 +1709,10 @@ namespace Signorini
   Parameters
   read_parameters(const std::string &filename, ParameterHandler &prm)
   {
+    if (std::filesystem::is_directory(filename))
+      throw InputError("'" + filename +
+                       "' is a directory, not a parameter file. Give the "
+                       "path of a .prm file.");
     std::ifstream in(filename);
     if (!in)
       throw InputError("Cannot open the parameter file '" + filename +

@@ -15,9 +15,11 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
 #include <algorithm>
+#include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 #include <signorini/material/projected_volumetric_strain.h>
 #include <signorini/postprocess/stress_postprocessor.h>
@@ -938,6 +940,7 @@ namespace Signorini
       for (const auto &v : old_vectors)
         pointers.push_back(&v);
       triangulation.prepare_coarsening_and_refinement();
+      check_adapted_size();
       transfer.prepare_for_coarsening_and_refinement(pointers);
       triangulation.execute_coarsening_and_refinement();
     }
@@ -982,6 +985,25 @@ namespace Signorini
             << contact->n_friction_dofs() << " Lambda";
     pcout << std::endl;
     return true;
+  }
+
+
+  // The refinement flagged by adapt_mesh() (prepared) must stay within
+  // 'Geometry/Maximum number of cells'; found during the run, so a RunError.
+  template <int dim>
+  void
+  Simulation<dim>::check_adapted_size() const
+  {
+    const double n_cells = Geometry::cells_after_refinement(triangulation);
+    if (n_cells > parameters.geometry.maximum_cells)
+      throw RunError(
+        "adaptive refinement: the next cycle would make " +
+        Geometry::cell_estimate_text(n_cells, parameters) +
+        ". The results of the completed steps are in '" +
+        parameters.output.directory +
+        "'. Lower 'Adaptive refinement/Cycles' or 'Refinement fraction', "
+        "set its 'Maximum level', or raise 'Geometry/Maximum number of "
+        "cells' if the machine has the memory.");
   }
 
 
@@ -2851,6 +2873,8 @@ namespace Signorini
   {
     ParameterHandler prm;
     const Parameters parameters = read_parameters(filename, prm);
+    // Before any work: the results must have somewhere to go.
+    check_output_directory(parameters.output.directory, mpi_communicator);
     // Errors leave the Simulation's scope only after it is destroyed, so
     // its TimerOutput does not complain about an exception in flight.
     std::exception_ptr failure;

@@ -5,9 +5,12 @@
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria.h>
 
+#include <signorini/core/input_checks.h>
+#include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <memory>
@@ -250,37 +253,57 @@ namespace Signorini
                 if (name[0] != '/')
                   name = input_directory + "/" + name;
                 std::ifstream in(name);
-                if (!in)
+                if (!in || std::filesystem::is_directory(name))
                   throw InputError(body_name(b) +
                                    ", parameter 'Mesh file': cannot open '" +
                                    name +
                                    "'. Give an existing .msh or .inp file "
                                    "(relative paths start at the parameter "
                                    "file's directory).");
+                const std::string ext = name.substr(name.find_last_of('.') + 1);
+                if (ext != "msh" && ext != "inp")
+                  throw InputError(body_name(b) +
+                                   ", parameter 'Mesh file': unknown "
+                                   "extension '." +
+                                   ext + "'; use .msh or .inp.");
+                // Cell types are checked on the text first: GridIn reads
+                // triangles and tetrahedra into cells the element loops
+                // cannot use, and refuses others with a list that does not
+                // say what to do.
+                std::stringstream buffer;
+                buffer << in.rdbuf();
+                const std::string where = body_name(b) +
+                                          ", parameter 'Mesh file' (" +
+                                          body.mesh_file + ")";
+                check_mesh_file_cells(buffer.str(), ext, dim, where);
+                std::istringstream text(buffer.str());
                 GridIn<dim> grid_in;
                 grid_in.attach_triangulation(tria);
-                const std::string ext = name.substr(name.find_last_of('.') + 1);
-                try
-                  {
-                    if (ext == "msh")
-                      grid_in.read_msh(in);
-                    else if (ext == "inp")
-                      grid_in.read_abaqus(in);
-                    else
+                {
+                  // The Abaqus reader prints its inner exception (with a
+                  // stack trace) before it throws: kept for the message.
+                  CerrCapture diagnostics;
+                  try
+                    {
+                      if (ext == "msh")
+                        grid_in.read_msh(text);
+                      else
+                        grid_in.read_abaqus(text);
+                    }
+                  catch (const ExceptionBase &e)
+                    {
+                      std::ostringstream info;
+                      e.print_info(info);
+                      const std::string more =
+                        grid_in_diagnostics(diagnostics.text());
                       throw InputError(body_name(b) +
-                                       ", parameter 'Mesh file': unknown "
-                                       "extension '." +
-                                       ext + "'; use .msh or .inp.");
-                  }
-                catch (const ExceptionBase &e)
-                  {
-                    std::ostringstream info;
-                    e.print_info(info);
-                    throw InputError(body_name(b) +
-                                     ", parameter 'Mesh file': GridIn could "
-                                     "not read '" +
-                                     name + "': " + info.str());
-                  }
+                                       ", parameter 'Mesh file': GridIn could "
+                                       "not read '" +
+                                       name + "': " + info.str() +
+                                       (more.empty() ? "" : " (" + more + ")"));
+                    }
+                }
+                check_reference_cells(tria, where);
                 for (const auto &face : tria.active_face_iterators())
                   if (face->at_boundary())
                     {
@@ -314,11 +337,13 @@ namespace Signorini
       std::vector<types::manifold_id> volume_manifolds;
 
       const auto &bodies = parameters.geometry.bodies;
+      std::vector<MeshPart> parts; // the bodies, for the contact checks
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           Triangulation<dim> body_tria;
           build_body(bodies[b], b, parameters.input_directory, body_tria);
           check_cells(body_tria, b, bodies[b]);
+          add_mesh_parts(body_tria, b, parts);
 
           // Curved shapes: surface manifold on the curved faces, transfinite
           // interpolation in the volume (initialised on the joined mesh).
@@ -374,6 +399,8 @@ namespace Signorini
             }
         }
 
+      check_contact_surfaces(parameters.contact, parts);
+      check_global_refinements(cells.size(), parameters);
       triangulation.create_triangulation(vertices, cells, subcells);
       for (auto &[id, manifold] : manifolds)
         triangulation.set_manifold(id, *manifold);
@@ -423,6 +450,11 @@ namespace Signorini
                     if (touches)
                       cell->set_refine_flag();
                   }
+              // The closure (one hanging node per face) is flagged by
+              // prepare_coarsening_and_refinement(), which the execution
+              // would call anyway: the count after it is the new size.
+              triangulation.prepare_coarsening_and_refinement();
+              check_local_refinement(triangulation, cycle, parameters);
               triangulation.execute_coarsening_and_refinement();
             }
         }

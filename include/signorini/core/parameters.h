@@ -85,6 +85,7 @@ namespace Signorini
   {
     unsigned int                global_refinements;
     unsigned int                local_refinements;
+    unsigned long long          maximum_cells; // refinement beyond: refused
     std::string                 refinement_region; // f(x, y, z) > 0: refine
     std::vector<BodyParameters> bodies;
 

@@ -123,6 +123,10 @@ namespace Signorini
      * state_step_start to the new mesh. False: no cell was marked. */
     bool
     adapt_mesh(const double time, const double step_start_time);
+    /** Stops the run (RunError) if the prepared refinement flags would
+     * exceed 'Geometry/Maximum number of cells'. */
+    void
+    check_adapted_size() const;
     /** Newton loop on the current pairing; @p tolerance > 0 replaces
      * 'Relative tolerance' once the statuses have settled (a solve that
      * hands over to a new pairing). */

@@ -1,0 +1,104 @@
+#ifndef signorini_core_input_checks_h
+#define signorini_core_input_checks_h
+
+#include <deal.II/base/mpi.h>
+
+#include <signorini/core/parameters.h>
+
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+
+/**
+ * Checks of the input that ParameterHandler's patterns cannot express, run
+ * before any expensive work so that a mistake stops the run with one
+ * InputError naming subsection, parameter and what to change (and never
+ * later with a crash or a silent default):
+ *
+ * - the raw text of the parameter file (empty, byte-order mark, NUL byte),
+ * - numbered subsections that a 'Number of ...' entry asks for but the file
+ *   never enters (ParameterHandler would silently use the defaults),
+ * - 'Function constants' (names muparser or deal.II's FunctionParser would
+ *   refuse with an uncaught exception, or silently shadow),
+ * - every component of every expression (parsed and evaluated once),
+ * - the output directory (on rank 0, the verdict broadcast).
+ */
+namespace Signorini
+{
+  /**
+   * Captures std::cerr while it lives. deal.II prints muparser's and the
+   * mesh readers' diagnostics to std::cerr, on every rank, before it
+   * throws; a check wraps such calls and puts the reason into its one
+   * InputError instead.
+   */
+  class CerrCapture
+  {
+  public:
+    CerrCapture()
+      : old(std::cerr.rdbuf(sink.rdbuf()))
+    {}
+    ~CerrCapture()
+    {
+      std::cerr.rdbuf(old);
+    }
+    CerrCapture(const CerrCapture &) = delete;
+    CerrCapture &
+    operator=(const CerrCapture &) = delete;
+
+    std::string
+    text() const
+    {
+      return sink.str();
+    }
+
+  private:
+    std::ostringstream sink;
+    std::streambuf *   old;
+  };
+
+  /**
+   * Refuses a parameter text that is empty (no 'set' or 'subsection' line),
+   * holds a UTF-8 byte-order mark or a NUL byte; @p source names the file.
+   */
+  void
+  check_parameter_text(const std::string &text, const std::string &source);
+
+  /**
+   * Refuses a numbered subsection (Body k, Material k, Dirichlet k,
+   * Neumann k, Pair k) that @p counts asks for but @p text never enters.
+   */
+  void
+  check_numbered_subsections(const std::string &text,
+                             const Counts &     counts,
+                             const std::string &source);
+
+  /**
+   * Parses 'Function constants' ("name: value, name: value"), refusing empty
+   * entries, missing or non-numeric values, duplicate names and names that
+   * muparser cannot define or that clash with a variable or a built-in
+   * function.
+   */
+  std::map<std::string, double>
+  parse_function_constants(const std::string &text);
+
+  /**
+   * Parses and evaluates every component of every expression of the input
+   * once, at the origin and t = 0 (a non-finite value is not an error: a
+   * load may be 1/t).
+   */
+  void
+  check_expressions(const Parameters &parameters);
+
+  /**
+   * Refuses an output directory that is empty, exists as something other
+   * than a directory, cannot be created or is not writable. Checked (and
+   * created) on rank 0 of @p mpi_communicator; every rank throws the same
+   * InputError.
+   */
+  void
+  check_output_directory(const std::string &directory,
+                         const MPI_Comm     mpi_communicator);
+} // namespace Signorini
+
+#endif
