@@ -50,12 +50,6 @@ case_ parameters.prm.tmp       1 "'results/parameters.prm' (as 'results/paramete
 if ! grep -q "(on rank 1)" "$top/2-solution_0002.1.vtu.tmp/out.txt"; then
   echo "FAIL: the message does not name rank 1"; status=1
 fi
-# An output directory that cannot be created: 'results' is a file.
-mkdir -p "$top/file"; touch "$top/file/results"
-(cd "$top/file" && timeout 120 "$exe" "$top/scene.prm" > out.txt 2>&1); rc=$?
-if [ $rc -ne 2 ] || ! grep -q "^signorini: run stopped: cannot create the output directory 'results'" "$top/file/out.txt"; then
-  echo "FAIL: output directory that is a file: exit code $rc"; tail -3 "$top/file/out.txt"; status=1
-else
-  echo "PASS: output directory that is a file: exit code 2, $(grep -o "cannot create the output directory 'results': [^.]*" "$top/file/out.txt")"
-fi
+# An output directory that is a file is refused at input (exit 1):
+# tests/bad_input/output_directory_is_file.prm.
 exit $status
