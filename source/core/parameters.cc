@@ -1598,9 +1598,10 @@ namespace Signorini
     // Turn deal.II's parse exception into one message naming line and
     // subsection, with a hint for the cases users hit most.
     std::string
-    explain_parse_error(const ExceptionBase &e,
-                        const std::string &  text,
-                        const std::string &  source)
+    explain_parse_error(const ExceptionBase &           e,
+                        const std::string &             text,
+                        const std::string &             source,
+                        const std::vector<std::string> &origins)
     {
       std::ostringstream info;
       e.print_info(info);
@@ -1614,8 +1615,10 @@ namespace Signorini
       if (std::regex_search(message, m, std::regex("Line <(\\d+)>")))
         {
           const unsigned int line_no = std::stoi(m[1]);
-          where += ", line " + std::string(m[1]) + " (" +
-                   subsection_at_line(text, line_no) + ")";
+          where = (line_no >= 1 && line_no <= origins.size() ?
+                     origins[line_no - 1] :
+                     source + ", line " + std::string(m[1])) +
+                  " (" + subsection_at_line(text, line_no) + ")";
         }
       message = std::regex_replace(message,
                                    std::regex("Line <\\d+> of file <[^>]*>: "),
@@ -1637,9 +1640,10 @@ namespace Signorini
     }
 
     Parameters
-    parse_text(const std::string &text,
-               const std::string &source,
-               ParameterHandler & prm)
+    parse_text(const std::string &             text,
+               const std::string &             source,
+               ParameterHandler &              prm,
+               const std::vector<std::string> &origins = {})
     {
       check_parameter_text(text, source);
       // Pre-pass: only the counts, ignoring everything else.
@@ -1672,7 +1676,7 @@ namespace Signorini
           }
         catch (const ExceptionBase &e)
           {
-            throw InputError(explain_parse_error(e, text, source));
+            throw InputError(explain_parse_error(e, text, source, origins));
           }
         pre.enter_subsection("Geometry");
         counts.n_bodies = pre.get_integer("Number of bodies");
@@ -1696,12 +1700,72 @@ namespace Signorini
         }
       catch (const ExceptionBase &e)
         {
-          throw InputError(explain_parse_error(e, text, source));
+          throw InputError(explain_parse_error(e, text, source, origins));
         }
       check_numbered_subsections(text, counts, source);
       Parameters parameters;
       parameters.parse_parameters(prm, counts);
       return parameters;
+    }
+  } // namespace
+
+
+  namespace
+  {
+    // The directory of @p filename ("." for a bare name).
+    std::string
+    directory_of(const std::string &filename)
+    {
+      const auto slash = filename.find_last_of('/');
+      return slash == std::string::npos ? "." : filename.substr(0, slash);
+    }
+
+    // ParameterHandler's 'include <file>' lines replaced by the file's text,
+    // recursively, with relative paths taken from the directory of the file
+    // that includes it (as 'Mesh file'; ParameterHandler itself would take
+    // them from the working directory). @p origins gets "file 'f', line n"
+    // for every line of the result, for messages.
+    std::string
+    expand_includes(const std::string &       text,
+                    const std::string &       filename,
+                    std::vector<std::string> &origins,
+                    const unsigned int        depth = 0)
+    {
+      std::istringstream in(text);
+      std::string        line, result;
+      for (unsigned int n = 1; std::getline(in, line); ++n)
+        {
+          const std::string where =
+            "parameter file '" + filename + "', line " + std::to_string(n);
+          const std::string code =
+            Utilities::trim(line.substr(0, line.find('#')));
+          if (code.rfind("include", 0) != 0 ||
+              (code.size() > 7 && !std::isspace(code[7])))
+            {
+              result += line + "\n";
+              origins.push_back(where);
+              continue;
+            }
+          std::string name = Utilities::trim(code.substr(7));
+          if (name.empty())
+            throw InputError(where + ": 'include' needs a file name.");
+          if (depth >= 8)
+            throw InputError(where + ": 'include' nested deeper than 8 "
+                                     "files (does a file include itself?).");
+          if (name[0] != '/')
+            name = directory_of(filename) + "/" + name;
+          std::ifstream included(name);
+          if (!included || std::filesystem::is_directory(name))
+            throw InputError(where + ": cannot read the included file '" +
+                             name +
+                             "'. Relative paths start at the directory of "
+                             "the file that includes it.");
+          std::stringstream buffer;
+          buffer << included.rdbuf();
+          check_parameter_text(buffer.str(), "included file '" + name + "'");
+          result += expand_includes(buffer.str(), name, origins, depth + 1);
+        }
+      return result;
     }
   } // namespace
 
@@ -1719,11 +1783,13 @@ namespace Signorini
                        "'. Give the path of an existing .prm file.");
     std::stringstream buffer;
     buffer << in.rdbuf();
-    Parameters parameters =
-      parse_text(buffer.str(), "parameter file '" + filename + "'", prm);
-    const auto slash = filename.find_last_of('/');
-    parameters.input_directory =
-      slash == std::string::npos ? "." : filename.substr(0, slash);
+    const std::string source = "parameter file '" + filename + "'";
+    check_parameter_text(buffer.str(), source);
+    std::vector<std::string> origins;
+    const std::string        text =
+      expand_includes(buffer.str(), filename, origins);
+    Parameters parameters = parse_text(text, source, prm, origins);
+    parameters.input_directory = directory_of(filename);
     parameters.input_file = filename;
     return parameters;
   }
