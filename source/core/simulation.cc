@@ -2622,6 +2622,85 @@ namespace Signorini
 
   template <int dim>
   void
+  Simulation<dim>::write_step_results(const unsigned int step,
+                                      const double       time,
+                                      const unsigned int iterations)
+  {
+    compute_reactions();
+    compute_reference_errors(time);
+    if (contact->active())
+      check_contact_references(time);
+    append_newton_history();
+    const std::string statistics_lines =
+      write_statistics(step, time, iterations);
+    output_results(step, time);
+    if (contact->active() && parameters.output.write_csv)
+      {
+        std::ostringstream name;
+        name << parameters.output.directory << "/contact_" << std::setw(4)
+             << std::setfill('0') << step << ".csv";
+        check_output(contact->write_csv(name.str()));
+      }
+    // The step's line in statistics.csv last: a step listed there has
+    // all its files on disk.
+    append_statistics(statistics_lines);
+    last_written_time = time;
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::print_run_summary(const unsigned int n_written,
+                                     const unsigned int stopped_in)
+  {
+    const unsigned int n_steps = parameters.load_stepping.step_times.size();
+    // What even a quiet run prints (sout): the last step's reference
+    // checks, the run summary, the Jacobian check, timing and memory.
+    if (parameters.output.verbosity == Verbosity::quiet && n_written > 0)
+      {
+        sout << (stopped_in > 0 ? "Last written step, t = " :
+                                  "Final step, t = ")
+             << format(last_written_time, 4) << "\n";
+        for (const auto &line : last_checks)
+          sout << "  reference check: " << line << "\n";
+      }
+    if ((n_steps > 1 || stopped_in > 0) && !step_iterations.empty())
+      {
+        // Newton iterations per load step (all geometric iterations and
+        // cut attempts of the step that converged): median and maximum.
+        // (Median of an even count: the mean of the two middle values.)
+        std::vector<unsigned int> sorted = step_iterations;
+        std::sort(sorted.begin(), sorted.end());
+        const std::size_t  m   = sorted.size();
+        const unsigned int sum = sorted[(m - 1) / 2] + sorted[m / 2];
+        sout << "Run summary";
+        if (stopped_in > 0)
+          sout << " (stopped in load step " << stopped_in << " of " << n_steps
+               << "): " << n_written << " load step(s) written";
+        else
+          sout << ": " << n_steps << " load steps";
+        sout << ", Newton iterations per step median " << sum / 2
+             << (sum % 2 ? ".5" : "") << ", max " << sorted.back()
+             << ", step cuts " << run_cuts;
+        if (contact->active())
+          sout << ", status cycles detected " << run_cycles
+               << ", points frozen " << run_frozen << ", released "
+               << run_released;
+        if (early_releases > 0)
+          sout << ", opened early (release extrapolation) "
+               << early_releases;
+        if (run_line_searches > 0)
+          sout << ", line searches " << run_line_searches;
+        sout << std::endl;
+      }
+    else if (stopped_in > 0)
+      sout << "Run summary (stopped in load step " << stopped_in << " of "
+           << n_steps << "): no load step written" << std::endl;
+  }
+
+
+  template <int dim>
+  void
   Simulation<dim>::run()
   {
     make_mesh();
@@ -2683,7 +2762,8 @@ namespace Signorini
         // Sub-steps: the whole step first, halved after each failure.
         unsigned int cuts = 0, total_iterations = 0;
         cycle_detections = points_frozen = points_released = line_searches = 0;
-        double t_sub_start = t_done; // start of the last converged sub-step
+        double       t_sub_start  = t_done; // start of the last converged sub-step
+        const double t_step_start = t_done;
         // The converged increment of the last (sub)step: the extrapolated
         // predictor of the next one.
         const auto record_increment = [&]() {
@@ -2722,15 +2802,33 @@ namespace Signorini
                   if (none_converged)
                     first_pairing = true;
                   if (++cuts > parameters.load_stepping.max_cuts)
-                    throw RunError(
-                      "load step " + std::to_string(step) + " did not converge "
-                      "between t = " + format(t_done, 4) + " and t = " +
-                      format(t_target, 4) + " after " +
-                      std::to_string(parameters.load_stepping.max_cuts) +
-                      " step cuts: " + newton_failure +
-                      ". The results of the completed steps are in '" +
-                      parameters.output.directory + "'. " +
-                      failure_advice());
+                    {
+                      // The last converged sub-step of this step, if any,
+                      // is written as the step's results (at its time),
+                      // and the run summary is printed before the stop.
+                      const bool partial = t_done > t_step_start;
+                      if (partial)
+                        {
+                          step_cuts = cuts - 1;
+                          pcout << "  results of the last converged "
+                                   "sub-step (t = "
+                                << format(t_done, 4) << ") written as step "
+                                << step << std::endl;
+                          write_step_results(step, t_done, total_iterations);
+                        }
+                      print_run_summary(step - (partial ? 0 : 1), step);
+                      throw RunError(
+                        "load step " + std::to_string(step) +
+                        " did not converge between t = " + format(t_done, 4) +
+                        " and t = " + format(t_target, 4) + " after " +
+                        std::to_string(parameters.load_stepping.max_cuts) +
+                        " step cuts: " + newton_failure +
+                        ". The results of the completed steps" +
+                        (partial ? " and of the last converged sub-step" :
+                                   "") +
+                        " are in '" + parameters.output.directory + "'. " +
+                        failure_advice());
+                    }
                   pcout << "  step not converged ("
                         << newton_failure.substr(0, newton_failure.find("; "))
                         << "): cut to t = "
@@ -2772,24 +2870,7 @@ namespace Signorini
               last_converged = state;
             }
         step_cuts = cuts;
-        compute_reactions();
-        compute_reference_errors(times[step - 1]);
-        if (contact->active())
-          check_contact_references(times[step - 1]);
-        append_newton_history();
-        const std::string statistics_lines =
-          write_statistics(step, times[step - 1], total_iterations);
-        output_results(step, times[step - 1]);
-        if (contact->active() && parameters.output.write_csv)
-          {
-            std::ostringstream name;
-            name << parameters.output.directory << "/contact_"
-                 << std::setw(4) << std::setfill('0') << step << ".csv";
-            check_output(contact->write_csv(name.str()));
-          }
-        // The step's line in statistics.csv last: a step listed there has
-        // all its files on disk.
-        append_statistics(statistics_lines);
+        write_step_results(step, times[step - 1], total_iterations);
         // 'Steps = between': the mesh follows the converged state; the
         // next step starts on it from the transferred state (its
         // increment: the extrapolated predictor's).
@@ -2804,39 +2885,7 @@ namespace Signorini
               last_converged = state;
             }
       }
-    // What even a quiet run prints (sout): the last step's reference
-    // checks, the run summary, the Jacobian check, timing and memory.
-    if (parameters.output.verbosity == Verbosity::quiet)
-      {
-        sout << "Final step, t = " << format(times.back(), 4) << "\n";
-        for (const auto &line : last_checks)
-          sout << "  reference check: " << line << "\n";
-      }
-    if (times.size() > 1)
-      {
-        // Newton iterations per load step (all geometric iterations and
-        // cut attempts of the step that converged): median and maximum.
-        // (Median of an even count: the mean of the two middle values.)
-        std::vector<unsigned int> sorted = step_iterations;
-        std::sort(sorted.begin(), sorted.end());
-        const std::size_t  m   = sorted.size();
-        const unsigned int sum = sorted[(m - 1) / 2] + sorted[m / 2];
-        sout << "Run summary: " << times.size()
-              << " load steps, Newton iterations per step median "
-              << sum / 2 << (sum % 2 ? ".5" : "") << ", max "
-              << sorted.back()
-              << ", step cuts " << run_cuts;
-        if (contact->active())
-          sout << ", status cycles detected " << run_cycles
-               << ", points frozen " << run_frozen << ", released "
-               << run_released;
-        if (early_releases > 0)
-          sout << ", opened early (release extrapolation) "
-               << early_releases;
-        if (run_line_searches > 0)
-          sout << ", line searches " << run_line_searches;
-        sout << std::endl;
-      }
+    print_run_summary(times.size());
     if (parameters.newton.check_jacobian && contact->active())
       sout << "Jacobian check: largest relative error of the contact "
                "Jacobian over the run = "

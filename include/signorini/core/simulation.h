@@ -139,6 +139,17 @@ namespace Signorini
                 const double                         residual_full);
     void
     check_jacobian();
+    /** Reactions, reference checks, statistics row, VTU and contact CSV of
+     * load step @p step at time @p time (the statistics row last). */
+    void
+    write_step_results(const unsigned int step,
+                       const double       time,
+                       const unsigned int iterations);
+    /** The run summary: after @p n_written steps, and with @p stopped_in >
+     * 0 for a run stopped in that load step. */
+    void
+    print_run_summary(const unsigned int n_written,
+                      const unsigned int stopped_in = 0);
     /** Before a solve: the rigid motions the assembled Jacobian does not
      * hold. With closed frictional points (friction that has no threshold
      * yet, or slips everywhere) they are held by springs for this solve;
@@ -264,6 +275,7 @@ namespace Signorini
     std::string             free_motions;
     // Why the last newton() or solve_load_step() call failed (for the
     // message when the step cuts are used up).
+    double        last_written_time = 0; // of the last step written
     std::string   newton_failure;
     NewtonFailure newton_failure_kind = NewtonFailure::iteration_limit;
     double model_size = 0; // bounding-box diagonal of the mesh [m]
