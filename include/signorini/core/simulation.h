@@ -276,6 +276,9 @@ namespace Signorini
     // Why the last newton() or solve_load_step() call failed (for the
     // message when the step cuts are used up).
     double        last_written_time = 0; // of the last step written
+    // Largest diagonal entry of the displacement rows of the last Jacobian
+    // (the round-off floor of a force level near zero, newton()).
+    double stiffness_scale = 0;
     std::string   newton_failure;
     NewtonFailure newton_failure_kind = NewtonFailure::iteration_limit;
     double model_size = 0; // bounding-box diagonal of the mesh [m]
