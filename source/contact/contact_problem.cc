@@ -1001,6 +1001,7 @@ namespace Signorini
       const auto &       contact      = parameters.contact;
       const unsigned int freeze_after = contact.freeze_after_cycles;
       unsigned int       n_pinned     = 0;
+      n_deep                          = 0;
       pairings_in_step += within_newton ? 0 : 1;
       for (auto &point : points)
         {
@@ -1090,6 +1091,8 @@ namespace Signorini
                   point.master_face = best_face;
                   take_projection(point, best);
                 }
+              else
+                pair_deep(point, x_e, x_master, inside, tree);
             }
           // Pairing 2-cycle: back on the face of two pairings before.
           if (!within_newton && !mortar && !obstacles[p] &&
@@ -1125,6 +1128,7 @@ namespace Signorini
             tangent_basis<dim>(point.normal, point.tangent_axis);
         }
       n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
+      n_deep         = Utilities::MPI::sum(n_deep, comm);
 
       // Dual multipliers only on slave faces whose points are all paired:
       // on a face that leaves the master partly, psi~ (negative lobes)
@@ -1146,6 +1150,55 @@ namespace Signorini
                 point.psi_lambda[l] += face.dual[l * n + m] * point.psi[m];
             }
         }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::pair_deep(
+      ContactPoint &                                          point,
+      const Point<dim> &                                      x_e,
+      const std::vector<std::vector<Point<dim>>> &           x_master,
+      const std::vector<Point<dim>> &                         inside,
+      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    {
+      // A slave point deeper in the master body than the search box reaches
+      // (a deep initial interpenetration, or a large load step) is paired
+      // from the penetrated side: with the nearest master faces onto which
+      // it projects inside the face and behind it (g > 0). Dropping it
+      // would silently lose the contact.
+      const unsigned int p = slave_faces[point.face].pair;
+      std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+      tree.query(boost::geometry::index::nearest(x_e, 8),
+                 std::back_inserter(hits));
+      std::vector<unsigned int> faces;
+      for (const auto &hit : hits)
+        if (master_faces[hit.second].pair == p)
+          faces.push_back(hit.second);
+      std::sort(faces.begin(), faces.end()); // partition-independent ties
+      double              best_distance = std::numeric_limits<double>::max();
+      int                 best_face     = -1;
+      FaceProjection<dim> best;
+      for (const unsigned int m : faces)
+        {
+          const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
+          if (!proj.converged || !proj.inside ||
+              (x_e - proj.x_m) * proj.normal <= 0)
+            continue;
+          const double distance = x_e.distance(proj.x_m);
+          if (distance < best_distance)
+            {
+              best_distance = distance;
+              best_face     = m;
+              best          = proj;
+            }
+        }
+      if (best_face < 0)
+        return;
+      point.paired      = true;
+      point.master_face = best_face;
+      take_projection(point, best);
+      ++n_deep;
     }
 
 
@@ -2522,6 +2575,11 @@ namespace Signorini
                 point.weight * (point.force - f_n * point.normal).norm();
             }
           r.p_max = std::max(r.p_max, -point.lambda);
+          if (point.paired)
+            {
+              ++r.n_paired;
+              r.max_gap = std::max(r.max_gap, point.gap);
+            }
           ++r.n_points;
           r.n_contact += point.status != PointStatus::free;
           r.n_stick += point.status == PointStatus::stick;
@@ -2559,6 +2617,13 @@ namespace Signorini
             result[p].rigid                 = true;
             result[p].obstacle_displacement = obstacles[p]->get_translation();
           }
+      for (unsigned int p = 0; p < result.size(); ++p)
+        {
+          auto &r = result[p];
+          r.max_gap   = Utilities::MPI::max(r.max_gap, comm);
+          r.n_paired  = Utilities::MPI::sum(r.n_paired, comm);
+          r.face_size = face_size[p];
+        }
       for (auto &r : result)
         {
           r.force     = Utilities::MPI::sum(r.force, comm);
@@ -2659,7 +2724,11 @@ namespace Signorini
             csv << "," << r.p;
             for (unsigned int k = 0; k < dim - 1; ++k)
               csv << "," << r.traction[k];
-            csv << "," << (r.paired ? r.gap : std::nan(""));
+            // No master face, no gap: an empty field (a missing value),
+            // not NaN.
+            csv << ",";
+            if (r.paired)
+              csv << r.gap;
             for (unsigned int k = 0; k < dim - 1; ++k)
               csv << "," << r.slip[k];
             // A closed point of a frictionless pair has no stick or slip.

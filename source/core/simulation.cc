@@ -743,6 +743,11 @@ namespace Signorini
         {
           TimerOutput::Scope t(timer, "pairing");
           contact->pair(state, time, step_start_time);
+          if (const unsigned int n = contact->deep_points(); n > 0)
+            pcout << "    pairing: " << n
+                  << " slave point(s) deep inside the master body, paired "
+                     "from the penetrated side"
+                  << std::endl;
           if (const unsigned int n = contact->newly_pinned(); n > 0)
             {
               cycle_detections += n;
@@ -2528,6 +2533,28 @@ namespace Signorini
             for (unsigned int d = 0; d < dim; ++d)
               pcout << (d ? ", " : "") << format(s.force[d], 4);
             pcout << "), max p = " << format(s.p_max, 4) << "\n";
+            // An open pair near contact, or one whose points find no
+            // master face at all, is worth a word: bodies loaded towards
+            // each other that close no point pass through each other
+            // between the contact points (a coarse curved surface), or
+            // do not face each other (ids swapped, normals away).
+            if (s.n_contact == 0 && s.n_paired == 0)
+              pcout << "  note: pair " << p + 1
+                    << ": no slave point finds the master within 'Contact/"
+                       "Projection tolerance': the surfaces do not face each "
+                       "other here (check the slave and master ids and the "
+                       "geometry)\n";
+            else if (s.n_contact == 0 && -s.max_gap < 0.5 * s.face_size)
+              {
+                pcout << "  note: pair " << p + 1
+                      << " closes no contact point; the nearest is "
+                      << format(-s.max_gap, 2) << " m from the master ("
+                      << format(-s.max_gap / s.face_size, 2)
+                      << " slave faces): if the bodies should touch here, "
+                         "the slave points may straddle the contact (refine "
+                         "the slave surface, or make the finer surface the "
+                         "slave)\n";
+              }
           }
         for (const auto &line : contact_checks)
           check_line(line);

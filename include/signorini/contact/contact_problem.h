@@ -21,6 +21,7 @@
 #include <signorini/core/parameters.h>
 #include <signorini/material/elastic_material.h>
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -302,6 +303,14 @@ namespace Signorini
       unsigned int
       end_geometric_iteration(const unsigned int g);
 
+      /** Points the last pairing found deep inside the master body and
+       * paired from the penetrated side (all ranks). */
+      unsigned int
+      deep_points() const
+      {
+        return n_deep;
+      }
+
       /**
        * Pairing 2-cycles (meshed masters, non-mortar rules): a point whose
        * new master face is the one of two pairings before and not the one
@@ -337,6 +346,11 @@ namespace Signorini
         // contact frame [N].
         double normal_force_local = 0, tangential_force_local = 0;
         unsigned int   n_contact = 0, n_stick = 0, n_slip = 0, n_points = 0;
+        // Points that found the master, and their largest gap (g > 0:
+        // interpenetration; -infinity when none is paired) [m].
+        unsigned int n_paired = 0;
+        double       max_gap  = -std::numeric_limits<double>::infinity();
+        double       face_size = 0;    // mean slave face size [m]
         bool           rigid = false;          // master is a rigid obstacle
         Tensor<1, dim> obstacle_displacement;  // its prescribed motion [m]
       };
@@ -576,6 +590,14 @@ namespace Signorini
        * and rebuilds the contact points; a new point takes the last status
        * of the nearest old point of its face.
        */
+      /** Pairs an unpaired @p point deep inside the master body with the
+       * nearest master face it lies behind (see the definition). */
+      void
+      pair_deep(ContactPoint &                                          point,
+                const Point<dim> &                                      x_e,
+                const std::vector<std::vector<Point<dim>>> &           x_master,
+                const std::vector<Point<dim>> &                         inside,
+                const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
       void
       segment(const TrilinosWrappers::MPI::Vector &                  state,
               const std::vector<std::vector<Point<dim>>> &          x_master,
@@ -706,6 +728,7 @@ namespace Signorini
       std::set<types::global_dof_index> node_release, node_extrapolated,
         node_kept;
       unsigned int        n_newly_pinned = 0, pairings_in_step = 0;
+      unsigned int        n_deep = 0; // points paired by pair_deep(), last pairing
 
       types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;
       unsigned int            n_nodes_total = 0;
