@@ -1150,7 +1150,11 @@ namespace Signorini
       "turned at Q* (Masing), m = 2 in 2D (cylinder) and 3 in 3D (sphere); a "
       "is the measured contact half-width, P and Q the contact force of pair "
       "1 along 'Friction ratio normal' and across it, tolerance 'Half-width "
-      "tolerance'. Valid for elastically similar bodies (no coupling of the "
+      "tolerance'. 2D: a and c midway between the farthest point inside "
+      "(closed; stick) and the nearest point outside beyond it. 3D: "
+      "area-equivalent radii, a = sqrt(A_closed / pi) and c = "
+      "sqrt(A_stick / pi) with A the summed weights of the closed and of the "
+      "stick points. Valid for elastically similar bodies (no coupling of the "
       "normal and tangential problems).");
     prm.declare_entry("Friction ratio from time",
                       "0",
