@@ -132,12 +132,10 @@ namespace Signorini
       for (unsigned int p = 0; p < contact.pairs.size(); ++p)
         {
           const auto &pair = contact.pairs[p];
-          // Normal status per multiplier node: integration-point rules,
-          // meshed master (the others have one law per node), frictionless
-          // or with the friction status per node too.
+          // Statuses per multiplier node: integration-point rules, meshed
+          // master (the others have one law per node).
           node_status_pair.push_back(
             contact.node_status && contact.rule != IntegrationRule::nodal &&
-            (pair.friction == 0 || contact.friction_node_status) &&
             pair.master == MasterType::body);
           friction_node_pair.push_back(node_status_pair.back() &&
                                        pair.friction > 0);
@@ -1497,7 +1495,9 @@ namespace Signorini
     unsigned int
     ContactProblem<dim>::decide_node_statuses(
       const TrilinosWrappers::MPI::Vector &state,
-      const TrilinosWrappers::MPI::Vector &start)
+      const TrilinosWrappers::MPI::Vector &start,
+      const bool                           new_iterate,
+      ContactStatistics &                  stats)
     {
       // Weighted gap G_l and weight D_l of every node (faces of all ranks).
       // P_l: the paired share of the node (psi >= 0); a node without
@@ -1571,7 +1571,9 @@ namespace Signorini
       // Friction status per node (theory.md, "Friction status per node"):
       // active if in contact with a threshold above zero (formulation.md
       // 3.3); H_l = Lambda_l + rho_t W_l / D_l; stick iff |H_l| <= 1 (the
-      // round-off tie as in the point law).
+      // round-off tie as in the point law). Each node once (it is on
+      // several faces), then its anti-cycling.
+      std::set<types::global_dof_index> seen;
       if (any_friction_node)
         for (unsigned int f = 0; f < slave_faces.size(); ++f)
           {
@@ -1582,6 +1584,8 @@ namespace Signorini
             for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
               {
                 const auto   dof = face.lambda_dofs[l];
+                if (!seen.insert(dof).second)
+                  continue;
                 NodeFriction nf;
                 nf.active = node_active.at(dof) &&
                             std::abs(state[dof]) > law.zero_threshold &&
@@ -1594,22 +1598,111 @@ namespace Signorini
                         law.rho_t * W_read[k][dof] / D_read[dof];
                     nf.stick = nf.H.norm() <= 1. + stick_tie;
                   }
-                const auto it = node_friction.find(dof);
-                const bool differs =
-                  it == node_friction.end() ?
-                    nf.active :
-                    (it->second.active != nf.active ||
-                     it->second.stick != nf.stick ||
-                     (nf.active && !nf.stick && !it->second.stick &&
-                      it->second.H * nf.H < 0));
-                // A node on several faces: its second visit finds the
-                // same status (counted once, by the owner).
-                if (differs && owned_multipliers.is_element(dof))
+                const auto  it    = node_friction.find(dof);
+                const bool  owned = owned_multipliers.is_element(dof);
+                const auto *previous =
+                  it == node_friction.end() ? nullptr : &it->second;
+                const auto used = node_anti_cycling(
+                  dof, nf, previous, new_iterate, owned, stats);
+                if (owned && friction_status_differs(previous, used))
                   ++changed;
-                node_friction[dof] = nf;
+                node_friction[dof] = used;
               }
           }
       return changed;
+    }
+
+
+    template <int dim>
+    bool
+    ContactProblem<dim>::friction_status_differs(const NodeFriction *previous,
+                                                 const NodeFriction &now)
+    {
+      if (!previous)
+        return now.active;
+      return previous->active != now.active || previous->stick != now.stick ||
+             (now.active && !now.stick && !previous->stick &&
+              previous->H * now.H < 0);
+    }
+
+
+    template <int dim>
+    typename ContactProblem<dim>::NodeFriction
+    ContactProblem<dim>::node_anti_cycling(
+      const types::global_dof_index dof,
+      const NodeFriction &          nf,
+      const NodeFriction *          previous,
+      const bool                    new_iterate,
+      const bool                    owned,
+      ContactStatistics &           stats)
+    {
+      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
+      auto               found        = node_cycle.find(dof);
+      if (found == node_cycle.end())
+        {
+          NodeCycle c;
+          c.before = previous ? *previous : NodeFriction();
+          found    = node_cycle.emplace(dof, c).first;
+        }
+      NodeCycle &  c    = found->second;
+      NodeFriction used = nf;
+      // Frozen (only while the node is in contact with a threshold): the
+      // status of the freeze; the plain law's status is kept for the
+      // check at convergence (release_frozen()).
+      c.plain_violated = false;
+      if (c.freeze && nf.active)
+        {
+          used.frozen = true;
+          used.stick  = c.freeze_stick;
+          if (!c.freeze_stick)
+            used.H = c.q;
+          c.plain          = nf;
+          c.plain_violated = c.freeze_stick ? !nf.stick :
+                                              (nf.stick || nf.H * c.q < 0);
+          if (owned)
+            {
+              ++stats.n_frozen;
+              stats.n_violated += c.plain_violated;
+            }
+        }
+      if (!new_iterate)
+        return used;
+      // A return to the status of two iterates back (a 2-cycle), or more
+      // than 2 N changes (longer cycles), as for points.
+      const bool changed =
+        friction_status_differs(previous, used) && !used.frozen;
+      c.changes += changed;
+      const bool back =
+        changed && iterates_recorded >= 2 &&
+        (!friction_status_differs(&c.before, used) ||
+         (freeze_after > 0 && c.changes > 2 * freeze_after));
+      if (back)
+        {
+          ++c.cycles;
+          stats.n_cycling += owned;
+        }
+      // Frozen from the next evaluation on, slipping along the last slip
+      // direction of the cycle (the cycle went through stick, or reversed:
+      // then the current one).
+      if (back && freeze_after > 0 && c.cycles >= freeze_after &&
+          !c.was_frozen && used.active)
+        {
+          const Tensor<1, dim - 1> h =
+            !used.stick ? used.H :
+                          (previous && previous->active && !previous->stick ?
+                             previous->H :
+                             Tensor<1, dim - 1>());
+          if (h.norm() > 0)
+            {
+              c.was_frozen   = true;
+              c.freeze       = true;
+              c.freeze_stick = false;
+              c.q            = h / h.norm();
+              stats.n_newly_frozen += owned;
+            }
+        }
+      c.before = previous ? *previous : NodeFriction();
+      return used;
     }
 
 
@@ -1682,7 +1775,8 @@ namespace Signorini
       update_projections(state);
       if (any_node_status)
         {
-          stats.n_changed += decide_node_statuses(state, start);
+          stats.n_changed +=
+            decide_node_statuses(state, start, new_iterate, stats);
           // The statuses of the next solve (release extrapolation).
           if (matrix)
             node_active_solved = node_active;
@@ -2144,11 +2238,14 @@ namespace Signorini
                   }
                 // Slip: K_B = (I - q q) / |H|, dH/dLambda_l = I,
                 // dH/du = rho_t / D_l dW/du.
+                // Frozen in slip: q fixed, K_B = 0.
                 const double       nH = nf.H.norm();
                 Tensor<2, dim - 1> KB;
-                for (unsigned int k = 0; k < dim - 1; ++k)
-                  for (unsigned int kk = 0; kk < dim - 1; ++kk)
-                    KB[k][kk] = ((k == kk) - nf.H[k] * nf.H[kk] / (nH * nH)) / nH;
+                if (!nf.frozen)
+                  for (unsigned int k = 0; k < dim - 1; ++k)
+                    for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                      KB[k][kk] =
+                        ((k == kk) - nf.H[k] * nf.H[kk] / (nH * nH)) / nH;
                 for (unsigned int k = 0; k < dim - 1; ++k)
                   {
                     for (unsigned int kk = 0; kk < dim - 1; ++kk)
@@ -2213,6 +2310,9 @@ namespace Signorini
     ContactProblem<dim>::start_newton_solve()
     {
       iterates_recorded = 0;
+      node_cycle.clear();
+      for (auto &[dof, nf] : node_friction)
+        nf.frozen = false;
       node_release.clear();
       node_extrapolated.clear();
       node_kept.clear();
@@ -2324,6 +2424,25 @@ namespace Signorini
               {
                 ++n;
                 clear_freeze(point);
+              }
+          }
+      // Nodes (friction status per node): the same rule.
+      for (auto &[dof, c] : node_cycle)
+        if (c.freeze && c.plain_violated)
+          {
+            const bool owned = owned_multipliers.is_element(dof);
+            if (!c.refrozen && c.plain.active)
+              {
+                again += owned;
+                c.refrozen     = true;
+                c.freeze_stick = c.plain.stick;
+                if (!c.plain.stick && c.plain.H.norm() > 0)
+                  c.q = c.plain.H / c.plain.H.norm();
+              }
+            else
+              {
+                n += owned;
+                c.freeze = false;
               }
           }
       refrozen = Utilities::MPI::sum(again, comm);
@@ -2511,9 +2630,11 @@ namespace Signorini
     template <int dim>
     struct ContactProblem<dim>::PointsState
     {
-      std::vector<ContactPoint>               points;
-      std::map<types::global_dof_index, bool> node_active;
-      unsigned int                            iterates_recorded;
+      std::vector<ContactPoint>                       points;
+      std::map<types::global_dof_index, bool>         node_active;
+      std::map<types::global_dof_index, NodeFriction> node_friction;
+      std::map<types::global_dof_index, NodeCycle>    node_cycle;
+      unsigned int                                    iterates_recorded;
     };
 
 
@@ -2522,7 +2643,8 @@ namespace Signorini
     ContactProblem<dim>::save_points() const
     {
       return std::make_shared<const PointsState>(
-        PointsState{points, node_active, iterates_recorded});
+        PointsState{
+          points, node_active, node_friction, node_cycle, iterates_recorded});
     }
 
 
@@ -2532,6 +2654,8 @@ namespace Signorini
     {
       points            = saved.points;
       node_active       = saved.node_active;
+      node_friction     = saved.node_friction;
+      node_cycle        = saved.node_cycle;
       iterates_recorded = saved.iterates_recorded;
     }
 

@@ -857,34 +857,24 @@ namespace Signorini
                       "all closed (holds bodies that only "
                       "contact supports; open points are released by "
                       "Newton).");
-    prm.declare_entry("Normal status",
+    prm.declare_entry("Statuses",
                       "node",
                       Patterns::Selection("point|node"),
-                      "Where the contact/free status is decided with the "
-                      "integration-point rules (gauss, simpson, newton-cotes, "
-                      "mortar) on frictionless pairs with a meshed master: "
-                      "per contact point (formulation.md 3.1), or per "
-                      "multiplier node on the weighted gap (active nodes "
-                      "close their weighted gap, free nodes carry lambda = "
-                      "0: the converged solution does not depend on the "
-                      "'Normal coefficient'). The nodal rule, frictional "
-                      "pairs and rigid obstacles always use points.");
-    prm.declare_entry("Friction status",
-                      "point",
-                      Patterns::Selection("point|node"),
-                      "Where the stick/slip status is decided with the "
-                      "integration-point rules (gauss, simpson, newton-cotes, "
-                      "mortar) on frictional pairs with a meshed master: per "
-                      "contact point (formulation.md 3.2), or per multiplier "
-                      "node on the weighted slip (sticking nodes close their "
-                      "weighted slip, slipping nodes carry Lambda along it, "
-                      "free nodes Lambda = 0; the contact status of these "
-                      "pairs is then decided per node too, as with 'Normal "
-                      "status = node'). With node, the converged solution "
-                      "does not depend on the 'Tangential coefficient' nor "
-                      "on the 'Normal coefficient', as with the nodal rule. "
-                      "Needs 'Normal status = node' and 'Friction threshold "
-                      "= newton'.");
+                      "Where the contact/free and the stick/slip statuses "
+                      "are decided with the integration-point rules (gauss, "
+                      "simpson, newton-cotes, mortar) on pairs with a meshed "
+                      "master: per multiplier node (node: active nodes close "
+                      "their weighted gap, free nodes carry lambda = 0; "
+                      "sticking nodes close their weighted slip, slipping "
+                      "nodes carry Lambda along it, free nodes Lambda = 0; "
+                      "the converged solution does not depend on the "
+                      "'Normal coefficient' nor on the 'Tangential "
+                      "coefficient', as with the nodal rule), or per "
+                      "contact point (point: the law of every integration "
+                      "point for itself, theory.md). Node needs 'Friction "
+                      "threshold = newton' on frictional pairs. The nodal "
+                      "rule and rigid obstacles have one law per node "
+                      "anyway.");
     prm.declare_entry("Friction threshold",
                       "newton",
                       Patterns::Selection("newton|frozen"),
@@ -1012,20 +1002,8 @@ namespace Signorini
     initial_status = i == "open"        ? InitialStatus::open :
                      i == "penetrating" ? InitialStatus::penetrating :
                                           InitialStatus::closed;
-    node_status              = prm.get("Normal status") == "node";
+    node_status              = prm.get("Statuses") == "node";
     frozen_threshold         = prm.get("Friction threshold") == "frozen";
-    friction_node_status     = prm.get("Friction status") == "node";
-    if (friction_node_status && !node_status)
-      throw InputError("subsection 'Contact', parameter 'Friction status' = "
-                       "node needs 'Normal status = node' (the stick/slip "
-                       "status of a node needs the node's own contact "
-                       "status): set 'Normal status = node' or 'Friction "
-                       "status = point'.");
-    if (friction_node_status && frozen_threshold)
-      throw InputError("subsection 'Contact', parameter 'Friction status' = "
-                       "node works with the Newton friction threshold only: "
-                       "set 'Friction threshold = newton' or 'Friction "
-                       "status = point'.");
     newton_geometry = prm.get("Geometric linearisation") != "fixed point";
     newton_geometry_all =
       prm.get("Geometric linearisation") == "newton";
@@ -1045,6 +1023,17 @@ namespace Signorini
         prm.leave_subsection();
       }
     prm.leave_subsection();
+    // The statuses per node apply to pairs with a meshed master under an
+    // integration-point rule; with friction they need the Newton threshold.
+    for (unsigned int k = 0; k < pairs.size(); ++k)
+      if (node_status && frozen_threshold && rule != IntegrationRule::nodal &&
+          pairs[k].master == MasterType::body && pairs[k].friction > 0)
+        throw InputError(
+          "subsection 'Contact', parameter 'Friction threshold' = frozen: "
+          "pair " + std::to_string(k + 1) + " (friction on a meshed master, "
+          "integration rule '" + r + "') decides its statuses per node "
+          "('Statuses = node'), which needs the Newton threshold: set "
+          "'Friction threshold = newton', or 'Statuses = point'.");
   }
 
 

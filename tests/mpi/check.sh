@@ -34,7 +34,7 @@ results() { sed -n 's/^ *set Directory *= *//p' "$prm" | tail -1; }
 dir="$(results)"; dir="${dir:-results}"
 for np in "$@"; do
   /usr/bin/python3 - "$top/np1/$dir" "$top/np$np/$dir" "$np" <<'PY' || status=1
-import csv, glob, os, sys
+import bisect, csv, glob, os, sys
 a_dir, b_dir, np = sys.argv[1], sys.argv[2], sys.argv[3]
 fails = []
 def rows(path):
@@ -74,16 +74,34 @@ for fa in files:
         fails.append("%s missing on %s ranks" % (os.path.basename(fa), np)); continue
     PA, PB = rows(fa), rows(fb)
     axes = [c for c in ("x", "y", "z") if c in PA[0]] if PA else []
-    key = lambda r: tuple(float(r[c]) for c in axes)
-    PA.sort(key=key); PB.sort(key=key)
+    xs = max([abs(float(r[c])) for r in PA for c in axes] or [1.0])
     if len(PA) != len(PB):
         fails.append("%s: %d points on 1 rank, %d on %s" % (os.path.basename(fa), len(PA), len(PB), np)); continue
     n_points += len(PA)
-    xs = max([abs(float(r[c])) for r in PA for c in axes] or [1.0])
+    # Each point matched to the nearest unused point of the other run
+    # within 1e-6 of the extent (positions agree to the round-off of the
+    # converged state, about 1e-8 of the extent: a plain sort by
+    # coordinates swaps points of nearly the same x).
+    pos = lambda r: [float(r[c]) for c in axes]
+    PB.sort(key=lambda r: pos(r)[0]); xb = [pos(r)[0] for r in PB]
+    used = [False] * len(PB); matched = []
+    for ra in PA:
+        a = pos(ra); best, bi = None, -1
+        for j in range(bisect.bisect_left(xb, a[0] - 1e-6 * xs), bisect.bisect_right(xb, a[0] + 1e-6 * xs)):
+            if used[j]: continue
+            d = max(abs(u - v) for u, v in zip(a, pos(PB[j])))
+            if best is None or d < best: best, bi = d, j
+        if bi < 0: matched.append((ra, None)); continue
+        used[bi] = True; matched.append((ra, PB[bi]))
     ps = max([abs(float(r["p"])) for r in PA] or [1.0]) or 1.0
     values = [c for c in PA[0].keys() if c == "p" or c.startswith("traction")] if PA else []
     bad = 0
-    for ra, rb in zip(PA, PB):
+    for ra, rb in matched:
+        if rb is None:
+            bad += 1
+            if bad == 1:
+                first = (ra, {"no point within 1e-6 of the extent": ""})
+            continue
         if any(abs(float(ra[c]) - float(rb[c])) > 1e-6 * xs for c in axes) or ra["status"] != rb["status"] \
            or any(abs(float(ra[c]) - float(rb[c])) > 1e-6 * ps for c in values):
             bad += 1

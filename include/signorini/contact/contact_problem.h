@@ -421,6 +421,30 @@ namespace Signorini
       }
 
     private:
+      // A node frozen by anti-cycling (frozen = true) keeps its stick or
+      // slip status; frozen in slip, H holds the frozen unit direction and
+      // the slip row does not depend on the node's H.
+      struct NodeFriction
+      {
+        bool               active = false;
+        bool               stick  = false;
+        bool               frozen = false;
+        Tensor<1, dim - 1> H;
+      };
+      // Anti-cycling of the friction status per node, as for points
+      // (start_newton_solve()): the status of two iterates back, the cycles
+      // and changes in this Newton solve, the freeze (stick, or slip along
+      // q) and what the plain law says under it.
+      struct NodeCycle
+      {
+        NodeFriction       before;
+        unsigned int       cycles = 0, changes = 0;
+        bool               was_frozen = false, freeze = false;
+        bool               freeze_stick = false, refrozen = false;
+        Tensor<1, dim - 1> q;
+        bool               plain_violated = false;
+        NodeFriction       plain;
+      };
       struct SlaveFace
       {
         typename DoFHandler<dim>::active_cell_iterator cell;
@@ -623,14 +647,35 @@ namespace Signorini
                 const TrilinosWrappers::MPI::Vector &state) const;
 
       /**
-       * Normal status per multiplier node (`Normal status = node`): the
+       * Statuses per multiplier node (`Statuses = node`): the
        * weighted gaps of the node-status pairs, summed over all ranks,
        * decide node_active; returns the number of owned nodes whose status
        * changed.
        */
       unsigned int
       decide_node_statuses(const TrilinosWrappers::MPI::Vector &state,
-                           const TrilinosWrappers::MPI::Vector &start);
+                           const TrilinosWrappers::MPI::Vector &start,
+                           const bool                           new_iterate,
+                           ContactStatistics &                  stats);
+
+      /** Anti-cycling of one node's friction status @p nf (decided by the
+       * plain law) at an evaluation: applies the node's freeze, records
+       * what the plain law says under it, and at a new iterate counts a
+       * return to the status of two iterates back against @p previous
+       * (the status of the last solve) and freezes after 'Freeze after
+       * cycles' of them. Counts into @p stats when @p owned. */
+      /** Stick/slip status (or a slip direction turned by more than 90
+       * degrees) of a node differs from @p previous (none: inactive). */
+      static bool
+      friction_status_differs(const NodeFriction *previous,
+                              const NodeFriction &now);
+      NodeFriction
+      node_anti_cycling(const types::global_dof_index dof,
+                        const NodeFriction &          nf,
+                        const NodeFriction *          previous,
+                        const bool                    new_iterate,
+                        const bool                    owned,
+                        ContactStatistics &           stats);
 
       /** Tangent coordinates T^T v of the slip increment v of
        * formulation.md 2 at a paired @p point (from @p start). */
@@ -707,16 +752,11 @@ namespace Signorini
       // lambda DoF; the nodes of this rank's slave faces).
       std::map<types::global_dof_index, bool> node_active;
       // Friction status of the multiplier nodes of frictional node-status
-      // pairs ('Friction status = node'; key: lambda DoF): active (in
+      // pairs ('Statuses = node'; key: lambda DoF): active (in
       // contact, nonzero threshold), stick, and H_l = Lambda_l +
       // rho_t W_l / D_l with the weighted slip W_l (theory.md).
-      struct NodeFriction
-      {
-        bool               active = false;
-        bool               stick  = false;
-        Tensor<1, dim - 1> H;
-      };
       std::map<types::global_dof_index, NodeFriction> node_friction;
+      std::map<types::global_dof_index, NodeCycle> node_cycle;
       std::vector<bool> friction_node_pair; // per pair
       bool              any_friction_node = false;
       unsigned int        iterates_recorded = 0; // in this Newton solve

@@ -318,9 +318,8 @@ namespace Signorini
     unsigned int                       segment_order; // 0: automatic
     NormalChoice                       normal;
     InitialStatus                      initial_status;
-    bool                               node_status; // 'Normal status = node'
+    bool                               node_status; // 'Statuses = node'
     bool                               frozen_threshold;
-    bool friction_node_status; // 'Friction status = node'
     // 'Geometric linearisation' for rigid obstacles: Newton on every rigid
     // pair (newton), on the frictionless ones (auto), on none (fixed point).
     // newton_geometry: 'auto' or 'newton'; newton_geometry_all: 'newton'
