@@ -8,6 +8,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <signorini/contact/contact_problem.h>
+#include <signorini/contact/distributed_vectors.h>
 #include <signorini/contact/segmentation.h>
 #include <signorini/postprocess/output_files.h>
 
@@ -22,6 +23,9 @@ namespace Signorini
 {
   namespace Contact
   {
+    using internal::add_entry;
+    using internal::writable_vector;
+
     namespace
     {
       std::string
@@ -38,27 +42,6 @@ namespace Signorini
         for (unsigned int d = 0; d < dim; ++d)
           t[d] = v[d];
         return t;
-      }
-
-      // Adds to an entry a writable vector may not own.
-      void
-      add_entry(TrilinosWrappers::MPI::Vector &v,
-                const types::global_dof_index  i,
-                const double                   value)
-      {
-        const TrilinosWrappers::MPI::Vector::size_type index = i;
-        v.add(1, &index, &value);
-      }
-
-      // A vector that accepts additions to the entries of @p writable.
-      TrilinosWrappers::MPI::Vector
-      writable_vector(const IndexSet &owned,
-                      const IndexSet &writable,
-                      const MPI_Comm  comm)
-      {
-        TrilinosWrappers::MPI::Vector v;
-        v.reinit(owned, writable, comm, true);
-        return v;
       }
 
       // The master faces whose boxes meet @p box, in master_faces order.
@@ -847,8 +830,16 @@ namespace Signorini
       for (auto &face : slave_faces)
         {
           bool hanging = false;
+          face.excluded_contact.assign(face.node_local.size(), false);
+          face.excluded_friction.assign(face.node_local.size(), false);
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
-            hanging |= !nodes.at(face.node_dofs[l * dim]).hanging.empty();
+            {
+              const auto &info = nodes.at(face.node_dofs[l * dim]);
+              hanging |= !info.hanging.empty();
+              face.excluded_contact[l]  = info.exclude_contact;
+              face.excluded_friction[l] =
+                info.exclude_contact || info.exclude_friction;
+            }
           face.dual.clear();
           if (node_status_pair[face.pair] && !hanging)
             face.dual = dual_basis(face);
@@ -1905,8 +1896,27 @@ namespace Signorini
           s.freeze_stick          = point.freeze_stick;
           s.release               = point.release;
           const bool by_node      = node_status_pair[p];
-          auto r =
-            by_node ? node_status_response(point, s) : evaluate_contact_law(s, law);
+          // A point whose multiplier nodes are all excluded from contact
+          // (friction) by a Dirichlet condition (formulation.md 8) carries
+          // no contact (friction) force: its multipliers are held at zero,
+          // and the plain law would act there as a penalty of stiffness
+          // rho_n (rho_t) on the master. The nodal rule's points are nodes.
+          LawParameters point_law = law;
+          if (!by_node)
+            {
+              bool contact_out = true, friction_out = true;
+              for (unsigned int l = 0; l < n_l; ++l)
+                if (psi[l] > 1e-12)
+                  {
+                    contact_out &= face.excluded_contact[l];
+                    friction_out &= face.excluded_friction[l];
+                  }
+              s.release |= contact_out;
+              if (friction_out)
+                point_law.mu = 0;
+            }
+          auto r = by_node ? node_status_response(point, s) :
+                             evaluate_contact_law(s, point_law);
           // Friction status per node: the friction force of the multipliers,
           // -mu lambda_l T Lambda_l of each node with active friction
           // interpolated like lambda (theory.md, "Friction status per
@@ -1980,7 +1990,7 @@ namespace Signorini
               plain.freeze_contact        = false;
               plain.frozen_slip_direction = Tensor<1, dim>();
               plain.freeze_stick          = false;
-              const auto        rp = evaluate_contact_law(plain, law);
+              const auto        rp = evaluate_contact_law(plain, point_law);
               const PointStatus plain_status = label(rp);
               ++stats.n_frozen;
               const bool violated =
@@ -2661,6 +2671,21 @@ namespace Signorini
 
 
     template <int dim>
+    double
+    ContactProblem<dim>::roundoff_scale() const
+    {
+      double sum = 0;
+      for (const auto &point : points)
+        if (point.paired)
+          sum += std::pow(2 * point.weight *
+                            rho_n[slave_faces[point.face].pair] *
+                            point.x_ref.norm(),
+                          2);
+      return std::sqrt(Utilities::MPI::sum(sum, comm));
+    }
+
+
+    template <int dim>
     std::vector<typename ContactProblem<dim>::PairSummary>
     ContactProblem<dim>::summary() const
     {
@@ -2706,8 +2731,12 @@ namespace Signorini
             }
           ++r.n_points;
           r.n_contact += point.status != PointStatus::free;
+          // Stick and slip: points whose friction law is active (a closed
+          // point excluded from friction, or with a zero threshold, is
+          // closed without friction, as in the Newton lines).
           r.n_stick += point.status == PointStatus::stick;
-          r.n_slip += point.status == PointStatus::slip;
+          r.n_slip +=
+            point.status == PointStatus::slip && point.friction_active;
         }
       if (any_node_status)
         {

@@ -289,6 +289,15 @@ namespace Signorini
           i < dim * dim ? std::string(1, "xyz"[i / dim]) + "xyz"[i % dim] :
                           std::to_string(i + 1));
       inputs.push_back(stress);
+      // '*': a component the check leaves out.
+      std::vector<std::string> force = ref.contact_force;
+      for (auto &e : force)
+        if (Utilities::trim(e) == "*")
+          e = "0";
+      inputs.push_back(
+        {"subsection 'Reference solution', parameter 'Contact force'",
+         force,
+         axis_labels(force.size())});
       if (!ref.contact_pressure.empty())
         inputs.push_back(
           {"subsection 'Reference solution', parameter 'Contact pressure'",

@@ -541,20 +541,6 @@ namespace Signorini
                       "the largest relative difference (slow: two residual "
                       "evaluations per coupled unknown; for development and "
                       "tests).");
-    prm.declare_entry("Stagnation tolerance",
-                      "1e-6",
-                      Patterns::Double(0, 1),
-                      "Round-off floor: once the statuses have settled (no "
-                      "change at two iterates in a row), a residual below "
-                      "this factor times the force norm that an iteration "
-                      "no longer halves is accepted as converged, with a log "
-                      "line. Large augmentation coefficients (rho_n = 1e6 "
-                      "E/h) or stiffness contrasts put the floor above "
-                      "'Relative tolerance'. Equations linear at fixed "
-                      "statuses (frictionless pairs on meshed masters or "
-                      "rigid planes): a residual below it right after an "
-                      "exact step (direct solve, full update, statuses "
-                      "unchanged) is accepted at once. 0: off.");
     prm.declare_entry("Tolerance between pairings",
                       "1e-6",
                       Patterns::Double(0, 1),
@@ -591,7 +577,6 @@ namespace Signorini
     absolute_tolerance = prm.get_double("Absolute tolerance");
     check_jacobian     = prm.get_bool("Check Jacobian");
     line_search_steps  = prm.get_integer("Line search steps");
-    stagnation_tolerance = prm.get_double("Stagnation tolerance");
     tolerance_between_pairings = prm.get_double("Tolerance between pairings");
     prm.leave_subsection();
   }
@@ -1158,22 +1143,58 @@ namespace Signorini
                       "",
                       Patterns::Anything(),
                       "Displacement values to check, separated by ';', each "
-                      "'x, y[, z] : component : value' with component x, y "
-                      "or z, e.g. '0.00125, 0 : x : 2.72e-5'.");
+                      "'x, y[, z] : component : value[ : tolerance]' with "
+                      "component x, y or z and an optional relative "
+                      "tolerance of its own (else 'Point value tolerance'), "
+                      "e.g. '0.00125, 0 : x : 2.72e-5 : 0.01'.");
     prm.declare_entry("Point value tolerance",
                       "0.05",
                       Patterns::Double(0),
                       "Relative tolerance of the point value checks.");
-    prm.declare_entry("Force balance tolerance",
+    prm.declare_entry("Action-reaction tolerance",
                       "0",
                       Patterns::Double(0),
-                      "Check the equilibrium of every body after each step: "
-                      "|F_load + F_support + F_contact| over the largest of "
-                      "the three must be below this value. F_load: Neumann "
-                      "and body forces; F_support: Dirichlet reactions; "
-                      "F_contact: the contact force the body receives. "
-                      "Bodies are the connected groups of material ids. 0: "
-                      "not checked.");
+                      "Check after each step, for every contact pair, that "
+                      "the force the displacement rows carry (what the "
+                      "master receives) equals the force the multipliers "
+                      "stand for, recomputed from them alone (the traction "
+                      "lambda n + mu lambda T Lambda): their difference over "
+                      "the larger must be below this value. The two differ "
+                      "by the augmentation terms, which vanish at a "
+                      "converged state, and by any error of the contact law "
+                      "in the rows. 0: not checked.");
+    prm.declare_entry("Slip law tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Check after each step, for every pair with friction, "
+                      "Coulomb's law where the contact slips: at every "
+                      "slipping contact point (statuses per point) or "
+                      "slipping multiplier node (statuses per node: its "
+                      "force against its weighted slip) the friction force "
+                      "on the slave opposes the slip increment, and "
+                      "|f_t| = mu |f_n| within this relative tolerance. A "
+                      "step without slipping point says so. 0: not "
+                      "checked.");
+    prm.declare_entry("Contact force",
+                      "",
+                      Patterns::Anything(),
+                      "Reference for the total contact force on the master "
+                      "of pair 1 [N; N/m in 2D; axisymmetric: over the "
+                      "circumference], Dimension expressions of t separated "
+                      "by ';' (e.g. the applied load where the scene fixes "
+                      "it); a component written '*' is left out (e.g. the "
+                      "horizontal force of a half model). Empty: not "
+                      "checked.");
+    prm.declare_entry("Contact force from time",
+                      "0",
+                      Patterns::Double(),
+                      "The 'Contact force' check runs at the steps with t >= "
+                      "this time (e.g. the steady phase of a load path).");
+    prm.declare_entry("Contact force tolerance",
+                      "1e-3",
+                      Patterns::Double(0),
+                      "Relative tolerance of the 'Contact force' check: "
+                      "|F - F_ref| / |F_ref|.");
     prm.declare_entry("Gap tolerance",
                       "0",
                       Patterns::Double(0),
@@ -1200,7 +1221,11 @@ namespace Signorini
     contact_pressure       = prm.get("Contact pressure");
     pressure_l2_tolerance  = prm.get_double("Pressure L2 tolerance");
     point_value_tolerance  = prm.get_double("Point value tolerance");
-    force_balance_tolerance = prm.get_double("Force balance tolerance");
+    action_reaction_tolerance = prm.get_double("Action-reaction tolerance");
+    slip_law_tolerance        = prm.get_double("Slip law tolerance");
+    contact_force             = split_expressions(prm.get("Contact force"));
+    contact_force_tolerance   = prm.get_double("Contact force tolerance");
+    contact_force_from        = prm.get_double("Contact force from time");
     gap_tolerance           = prm.get_double("Gap tolerance");
     friction_ratio         = prm.get_double("Friction force ratio");
     friction_ratio_normal  = to_doubles(prm.get("Friction ratio normal"));
@@ -1213,17 +1238,20 @@ namespace Signorini
     for (const auto &entry : split_expressions(prm.get("Point values")))
       {
         const auto parts = Utilities::split_string_list(entry, ':');
-        if (parts.size() != 3 ||
+        if ((parts.size() != 3 && parts.size() != 4) ||
             (parts[1] != "x" && parts[1] != "y" && parts[1] != "z"))
           throw InputError("subsection 'Reference solution', parameter "
                            "'Point values': cannot read '" +
                            entry +
-                           "'. Write 'x, y[, z] : component : value' with "
-                           "component x, y or z.");
+                           "'. Write 'x, y[, z] : component : value[ : "
+                           "tolerance]' with component x, y or z.");
         PointValue v;
         v.point     = to_doubles(parts[0]);
         v.component = component_index(parts[1]);
         v.value     = Utilities::string_to_double(parts[2]);
+        v.tolerance = parts.size() == 4 ?
+                        Utilities::string_to_double(parts[3]) :
+                        point_value_tolerance;
         point_values.push_back(v);
       }
     prm.leave_subsection();
@@ -1463,6 +1491,15 @@ namespace Signorini
     if (!reference.displacement.empty() && reference.displacement.size() != dim)
       throw InputError("subsection 'Reference solution', parameter "
                        "'Displacement': give Dimension expressions.");
+    if (!reference.contact_force.empty() &&
+        reference.contact_force.size() != dim)
+      throw InputError("subsection 'Reference solution', parameter 'Contact "
+                       "force': give Dimension expressions of t separated by "
+                       "';' (the force components), or leave it empty.");
+    if (!reference.contact_force.empty() && contact.pairs.empty())
+      throw InputError("subsection 'Reference solution', parameter 'Contact "
+                       "force': the scene has no contact pair. Remove the "
+                       "reference or declare a pair in subsection 'Contact'.");
     if (!reference.stress.empty() && reference.stress.size() != dim * dim)
       throw InputError("subsection 'Reference solution', parameter 'Stress': "
                        "give Dimension^2 expressions (row by row).");

@@ -335,6 +335,18 @@ namespace Signorini
       void
       restore_points(const PointsState &saved);
 
+      /**
+       * Round-off scale of the contact residual [N], over all ranks:
+       * sqrt(sum_k (2 w_k rho_n |x_k|)^2) over the paired points. The gap
+       * g = (x^e - x^m) . n is a difference of positions, so its round-off
+       * is about eps |x|, and rho_n carries it into the lambda rows and
+       * (through lambda_aug) into the displacement rows: eps times this
+       * scale is the size of the residual's round-off (Newton's round-off
+       * floor; large coefficients c_n put it above 'Relative tolerance').
+       */
+      double
+      roundoff_scale() const;
+
       /** Per-pair results of the last evaluation, summed over ranks. */
       struct PairSummary
       {
@@ -373,6 +385,47 @@ namespace Signorini
       };
       std::vector<PointRecord>
       gather_points() const;
+
+      /**
+       * Two facts of a converged contact state that the residual does not
+       * restate, per pair (reference checks, doc/verification.md;
+       * source/contact/contact_checks.cc):
+       * - action = reaction: the force that the displacement rows of the
+       *   pair carry (sum of w f over its points: what the master receives,
+       *   by the same shape functions that sum to one) against the force
+       *   that the multiplier unknowns stand for, recomputed from them
+       *   alone: the traction lambda n + mu lambda T Lambda (formulation.md
+       *   1 and 4; per node with statuses per node). They differ by the
+       *   augmentation terms (rho_n g, rho_t v), which vanish at a
+       *   converged state, and by any error of the law in the rows.
+       * - Coulomb's law where the contact slips: at every slipping point
+       *   (statuses per point) or slipping multiplier node (statuses per
+       *   node), the tangential force that the slave receives opposes the
+       *   slip increment v (formulation.md 3.2: h / |h| along v at
+       *   convergence) and |f_t| = mu |f_n|; for a node, its force
+       *   F_l = sum_k w psi_l f, split by its mean normal, against its
+       *   weighted slip sum_k w psi~_l v (exact on flat masters; on curved
+       *   ones the normal turns under a node).
+       * @p state: the converged (ghosted) system vector of the last
+       * assemble().
+       */
+      struct LawCheck
+      {
+        Tensor<1, dim> force_rows;        // on the master [N]
+        Tensor<1, dim> force_multipliers; // on the master [N]
+        // Slipping points or nodes whose slip and friction force are
+        // measurable (above 1e-9 of the pair's largest), and among them
+        // those whose friction opposes the slip.
+        unsigned int n_slipping = 0, n_opposed = 0;
+        // Smallest cosine of the angle between the friction force on the
+        // slave and -v over them (1: exactly opposed), and the largest
+        // relative deviation from |f_t| = mu |f_n|.
+        double min_cosine    = 1;
+        double max_deviation = 0;
+        bool   by_node    = false; // statuses per node
+      };
+      std::vector<LawCheck>
+      law_checks(const TrilinosWrappers::MPI::Vector &state) const;
 
       /** Writes the per-step slave-surface CSV (collective; rank 0 writes,
        * under a temporary name renamed into place). Returns "" or why the
@@ -467,6 +520,9 @@ namespace Signorini
         // so that the integral of psi~_l psi_m over the face is
         // delta_lm D_l; empty: the multipliers use psi.
         std::vector<double> dual;
+        // Per node: excluded from contact (a Dirichlet condition along the
+        // normal) or from friction (one along a tangent, or from contact).
+        std::vector<bool> excluded_contact, excluded_friction;
       };
 
       struct MasterFace

@@ -182,7 +182,6 @@ namespace Signorini
     double       absolute_tolerance;
     bool         check_jacobian;
     unsigned int line_search_steps; // 0: full Newton updates
-    double       stagnation_tolerance;
     double       tolerance_between_pairings;
 
     static void declare_parameters(ParameterHandler &prm);
@@ -250,10 +249,15 @@ namespace Signorini
       std::vector<double> point;
       unsigned int        component;
       double              value;
+      double              tolerance; // relative
     };
     std::vector<PointValue> point_values;
     double                  point_value_tolerance;
-    double                  force_balance_tolerance; // 0: not checked
+    double                  action_reaction_tolerance; // 0: not checked
+    double                  slip_law_tolerance; // 0: not checked
+    std::vector<std::string> contact_force; // empty: not checked
+    double                   contact_force_tolerance;
+    double                   contact_force_from; // first time checked
     double                  gap_tolerance;           // 0: not checked
 
     static void declare_parameters(ParameterHandler &prm);

@@ -16,6 +16,7 @@
 #include <signorini/contact/contact_problem.h>
 #include <signorini/core/parameters.h>
 #include <signorini/material/elastic_material.h>
+#include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/output_files.h>
 #include <signorini/solver/linear_solver.h>
 #include <signorini/solver/rigid_modes.h>
@@ -169,14 +170,6 @@ namespace Signorini
     double
     point_value(const Point<dim> &p, const unsigned int component) const;
     void
-    check_contact_references(const double time);
-    void
-    check_stick_zone(
-      const std::vector<typename Contact::ContactProblem<dim>::PointRecord>
-        &records);
-    void
-    check_force_balance();
-    void
     compute_reactions();
     void
     compute_reference_errors(const double time);
@@ -259,9 +252,11 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector support_force;
     Contact::ContactStatistics    contact_statistics;
     bool                          first_pairing = true;
-    std::vector<std::string>      contact_checks; // printed after each step
-    std::vector<std::string>      last_checks;    // all checks, last step
-    bool                          contact_checks_pass = true;
+    // Contact reference checks (history across steps) and their results
+    // of the step, printed after it.
+    Postprocess::ContactChecks<dim>        contact_reference_checks;
+    std::vector<Postprocess::CheckResult> contact_checks;
+    std::vector<std::string>              last_checks; // all checks, last step
     double                        jacobian_error_max  = 0; // Check Jacobian
 
     double                           force_scale = 0;
@@ -269,6 +264,7 @@ namespace Signorini
     // step (see newton()).
     bool   exact_at_end    = false;
     double residual_at_end = 0; // its residual over the force level
+    double floor_at_end    = 0; // and its round-off floor
     // Rigid motions of the bodies; those the Jacobian of the last solve did
     // not hold (held by springs for that solve, see hold_free_motions()).
     Solver::RigidModes<dim> rigid_modes;
@@ -276,9 +272,9 @@ namespace Signorini
     // Why the last newton() or solve_load_step() call failed (for the
     // message when the step cuts are used up).
     double        last_written_time = 0; // of the last step written
-    // Largest diagonal entry of the displacement rows of the last Jacobian
-    // (the round-off floor of a force level near zero, newton()).
-    double stiffness_scale = 0;
+    // || |K| |x| || of the last Jacobian K at the state x it was assembled
+    // at: the round-off scale of the internal force (newton()).
+    double        matrix_roundoff = 0;
     std::string   newton_failure;
     NewtonFailure newton_failure_kind = NewtonFailure::iteration_limit;
     double model_size = 0; // bounding-box diagonal of the mesh [m]
@@ -304,13 +300,6 @@ namespace Signorini
     unsigned int cycle_detections = 0, points_frozen = 0, points_released = 0,
                  step_cuts = 0;
     std::vector<unsigned int> step_iterations;
-    std::vector<Tensor<1, dim>> steady_forces; // Force variation check
-    // Stick zone check: tangent of the tangential force, its last value,
-    // loading direction (+1/-1, 0 before loading) and last turning point.
-    Tensor<1, dim> mindlin_tangent;
-    double         mindlin_q_last = 0, mindlin_q_turn = 0;
-    int            mindlin_direction = 0;
-    bool           mindlin_turned    = false;
     unsigned int line_searches = 0, run_line_searches = 0;
     unsigned int krylov_iterations = 0, krylov_max = 0; // per load step
     unsigned int n_failed_checks = 0;

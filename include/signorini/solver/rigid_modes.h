@@ -103,14 +103,6 @@ namespace Signorini
       std::string
       describe(const Motion &motion) const;
 
-      /** Largest diagonal entry of the rows of @p K in [0, n_u). */
-      double
-      largest_diagonal(const TrilinosWrappers::SparseMatrix &K,
-                       const types::global_dof_index         n_u) const
-      {
-        return scales(K, n_u).first;
-      }
-
     private:
       /** Largest diagonal entry of the u rows, largest u coupling of the
        * multiplier rows. */

@@ -1,0 +1,107 @@
+#ifndef signorini_postprocess_contact_checks_h
+#define signorini_postprocess_contact_checks_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <signorini/contact/contact_problem.h>
+#include <signorini/core/parameters.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+/**
+ * The contact checks of subsection 'Reference solution' (doc/verification.md
+ * lists which test asserts what): after each written load step, each
+ * computed quantity against its reference with a tolerance, as a structured
+ * result.
+ *
+ * Against references: the largest pressure p0, the contact half-width a,
+ * the pressure profile (relative L2 error), the stick zone of
+ * Cattaneo-Mindlin partial slip, the friction force ratio in steady
+ * sliding, the total contact force, displacements at points.
+ * Facts that hold for every converged state and that the residual does not
+ * restate: action = reaction between the displacement rows and the
+ * multipliers, the direction of friction against the slip, the gap of
+ * closed points, smooth forces in steady sliding.
+ */
+namespace Signorini
+{
+  namespace Postprocess
+  {
+    using namespace dealii;
+
+    /** One reference check: what was compared, and whether it passed. */
+    struct CheckResult
+    {
+      std::string text; // the line printed after "reference check: "
+      bool        pass = true;
+    };
+
+    template <int dim>
+    class ContactChecks
+    {
+    public:
+      explicit ContactChecks(const Parameters &parameters);
+
+      /**
+       * The checks of the step ending at @p time. @p state is the
+       * converged ghosted system vector; @p force_level the force level of
+       * the step (the largest internal or external force norm, the scale of
+       * a contact force that is zero up to round-off); @p
+       * displacement_at(p, c) the displacement component c at point p
+       * (collective). Checks that keep
+       * history (stick zone after a reversal, force variation) record the
+       * step.
+       */
+      std::vector<CheckResult>
+      evaluate(
+        const double                         time,
+        const Contact::ContactProblem<dim>  &contact,
+        const TrilinosWrappers::MPI::Vector &state,
+        const double                         force_level,
+        const std::function<double(const Point<dim> &, const unsigned int)>
+          &displacement_at);
+
+    private:
+      using Records =
+        std::vector<typename Contact::ContactProblem<dim>::PointRecord>;
+
+      void
+      check_stick_zone(const Records                      &records,
+                       const Contact::ContactProblem<dim> &contact,
+                       std::vector<CheckResult>           &results);
+
+      void
+      check_laws(const Contact::ContactProblem<dim>  &contact,
+                 const TrilinosWrappers::MPI::Vector &state,
+                 const double                         force_level,
+                 std::vector<CheckResult>            &results) const;
+
+      bool
+      is_last_step(const double time) const;
+
+      const Parameters                    &parameters;
+      std::unique_ptr<FunctionParser<dim>> exact_pressure, exact_force;
+      // The components of 'Contact force' that are compared (not '*').
+      std::array<bool, dim> force_compared;
+
+      // Force variation check: the forces of pair 1 at the steady steps.
+      std::vector<Tensor<1, dim>> steady_forces;
+
+      // Stick zone check: the tangential direction, the last tangential
+      // force, the force at the last reversal and the loading direction.
+      Tensor<1, dim> mindlin_tangent;
+      double         mindlin_q_last = 0, mindlin_q_turn = 0;
+      int            mindlin_direction = 0;
+      bool           mindlin_turned    = false;
+    };
+  } // namespace Postprocess
+} // namespace Signorini
+
+#endif

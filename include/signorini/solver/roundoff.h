@@ -1,0 +1,29 @@
+#ifndef signorini_solver_roundoff_h
+#define signorini_solver_roundoff_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+namespace Signorini
+{
+  namespace Solver
+  {
+    using namespace dealii;
+
+    /**
+     * || |K| |x| ||_2, the l2 norm over the rows of K of sum_j |K_ij x_j|
+     * (all ranks): the size of the terms whose sum is K x, so eps times it
+     * is the round-off of K x. Newton's round-off floor uses it for the
+     * internal force, where a rigid motion or a stiffness contrast makes the
+     * terms cancel (doc/robustness.md, "Round-off floor"). @p x is a ghosted
+     * vector; columns it does not hold count as zero.
+     */
+    double
+    absolute_product_norm(const TrilinosWrappers::SparseMatrix &K,
+                          const TrilinosWrappers::MPI::Vector  &x,
+                          const MPI_Comm                        comm);
+  } // namespace Solver
+} // namespace Signorini
+
+#endif

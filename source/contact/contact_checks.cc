@@ -1,0 +1,232 @@
+// Reference checks of a converged contact state that the residual does not
+// restate: action = reaction between the displacement rows and the
+// multipliers, and the direction of friction (ContactProblem::law_checks()).
+#include <deal.II/base/mpi.h>
+
+#include <signorini/contact/contact_problem.h>
+#include <signorini/contact/distributed_vectors.h>
+
+#include <algorithm>
+#include <limits>
+#include <set>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    namespace
+    {
+      // Cosine of the angle between a and b (1 if either is zero).
+      template <int dim>
+      double
+      cosine(const Tensor<1, dim> &a, const Tensor<1, dim> &b)
+      {
+        const double n = a.norm() * b.norm();
+        return n > 0 ? (a * b) / n : 1.;
+      }
+
+      // | |f_t| / (mu |f_n|) - 1 |: Coulomb's law in slip.
+      template <int dim>
+      double
+      coulomb_deviation(const Tensor<1, dim> &f_t,
+                        const double          f_n,
+                        const double          mu)
+      {
+        const double bound = mu * std::abs(f_n);
+        return bound > 0 ? std::abs(f_t.norm() / bound - 1) :
+                           std::numeric_limits<double>::infinity();
+      }
+    } // namespace
+
+
+    template <int dim>
+    std::vector<typename ContactProblem<dim>::LawCheck>
+    ContactProblem<dim>::law_checks(
+      const TrilinosWrappers::MPI::Vector &state) const
+    {
+      using internal::add_entry;
+      using internal::writable_vector;
+      const unsigned int    n_pairs = parameters.contact.pairs.size();
+      std::vector<LawCheck> result(n_pairs);
+
+      // Per node of a pair with friction statuses per node: its force
+      // sum_k w psi_l f (components 0..dim-1), its weighted slip
+      // sum_k w psi~_l v (dim..2dim-1) and its normal sum_k w psi_l n
+      // (2dim..3dim-1), global coordinates.
+      std::vector<TrilinosWrappers::MPI::Vector> nodal;
+      if (any_friction_node)
+        for (unsigned int c = 0; c < 3 * dim; ++c)
+          nodal.push_back(
+            writable_vector(owned_multipliers, multiplier_ghosts, comm));
+
+      // The largest slip and friction force of each pair (the scale below
+      // which a slipping point's direction is round-off).
+      std::vector<double> v_max(n_pairs, 0.), f_max(n_pairs, 0.);
+      const auto          tangential = [](const ContactPoint &point)
+      { return point.force - (point.force * point.normal) * point.normal; };
+      const auto slip_vector = [](const ContactPoint &point)
+      {
+        Tensor<1, dim> v;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          v += point.slip[k] * point.tangents[k];
+        return v;
+      };
+      for (const auto &point : points)
+        if (point.paired)
+        {
+          const unsigned int p = slave_faces[point.face].pair;
+          v_max[p]             = std::max(v_max[p], slip_vector(point).norm());
+          f_max[p]             = std::max(f_max[p], tangential(point).norm());
+        }
+      for (unsigned int p = 0; p < n_pairs; ++p)
+      {
+        v_max[p] = Utilities::MPI::max(v_max[p], comm);
+        f_max[p] = Utilities::MPI::max(f_max[p], comm);
+      }
+      const auto measurable = [&](const unsigned int    p,
+                                  const Tensor<1, dim> &f,
+                                  const Tensor<1, dim> &v)
+      { return v.norm() > 1e-9 * v_max[p] && f.norm() > 1e-9 * f_max[p]; };
+
+      for (const auto &point : points)
+      {
+        if (!point.paired)
+          continue;
+        const auto        &face = slave_faces[point.face];
+        const unsigned int p    = face.pair;
+        const double       mu   = parameters.contact.pairs[p].friction;
+        auto              &r    = result[p];
+        r.by_node               = node_status_pair[p];
+        r.force_rows += point.weight * point.force;
+
+        // The multipliers at the point, each in the basis the law reads
+        // it in: lambda with psi_lambda (dual with statuses per node),
+        // Lambda with psi.
+        const unsigned int n_l    = face.lambda_dofs.size();
+        double             lambda = 0;
+        Tensor<1, dim>     T_Lambda;
+        for (unsigned int l = 0; l < n_l; ++l)
+          lambda += point.psi_lambda[l] * state[face.lambda_dofs[l]];
+        // Traction on the slave lambda n + mu lambda_f T Lambda, so the
+        // force on the master is its opposite.
+        Tensor<1, dim> force = -lambda * point.normal;
+        if (mu > 0)
+        {
+          if (friction_node_pair[p])
+            // Per node: mu lambda_l T Lambda_l, interpolated with psi~.
+            for (unsigned int l = 0; l < n_l; ++l)
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                force -= mu * point.psi_lambda[l] * state[face.lambda_dofs[l]] *
+                         state[face.friction_dofs[l * (dim - 1) + k]] *
+                         point.tangents[k];
+          else
+          {
+            for (unsigned int l = 0; l < n_l; ++l)
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                T_Lambda += point.psi[l] *
+                            state[face.friction_dofs[l * (dim - 1) + k]] *
+                            point.tangents[k];
+            const double lambda_f = parameters.contact.frozen_threshold ?
+                                      point.lambda_frozen :
+                                      lambda;
+            force -= mu * lambda_f * T_Lambda;
+          }
+        }
+        r.force_multipliers += point.weight * force;
+
+        if (mu == 0)
+          continue;
+        const Tensor<1, dim> f_t = tangential(point);
+        const Tensor<1, dim> v   = slip_vector(point);
+        if (friction_node_pair[p])
+          for (unsigned int l = 0; l < n_l; ++l)
+            for (unsigned int c = 0; c < dim; ++c)
+            {
+              add_entry(nodal[c],
+                        face.lambda_dofs[l],
+                        point.weight * point.psi[l] * point.force[c]);
+              add_entry(nodal[dim + c],
+                        face.lambda_dofs[l],
+                        point.weight * point.psi_lambda[l] * v[c]);
+              add_entry(nodal[2 * dim + c],
+                        face.lambda_dofs[l],
+                        point.weight * point.psi[l] * point.normal[c]);
+            }
+        else if (point.status == PointStatus::slip && point.friction_active &&
+                 measurable(p, f_t, v))
+        {
+          // f is the force on the master: the slave receives -f, which
+          // opposes v iff f_t . v > 0.
+          ++r.n_slipping;
+          const double c = cosine(f_t, v);
+          r.n_opposed += c > 0;
+          r.min_cosine = std::min(r.min_cosine, c);
+          r.max_deviation =
+            std::max(r.max_deviation,
+                     coulomb_deviation(f_t, point.force * point.normal, mu));
+        }
+      }
+
+      if (any_friction_node)
+      {
+        for (auto &v : nodal)
+          v.compress(VectorOperation::add);
+        // Each owned slipping node once (it is on several faces).
+        std::set<types::global_dof_index> seen;
+        for (const auto &face : slave_faces)
+          if (friction_node_pair[face.pair])
+            for (const auto dof : face.lambda_dofs)
+            {
+              if (!owned_multipliers.is_element(dof) ||
+                  !seen.insert(dof).second)
+                continue;
+              const auto it = node_friction.find(dof);
+              if (it == node_friction.end() || !it->second.active ||
+                  it->second.stick)
+                continue;
+              Tensor<1, dim> F, W, n;
+              for (unsigned int c = 0; c < dim; ++c)
+              {
+                F[c] = nodal[c][dof];
+                W[c] = nodal[dim + c][dof];
+                n[c] = nodal[2 * dim + c][dof];
+              }
+              if (n.norm() == 0)
+                continue;
+              n /= n.norm();
+              const Tensor<1, dim> F_t = F - (F * n) * n;
+              if (!measurable(face.pair, F_t, W))
+                continue;
+              auto &r = result[face.pair];
+              ++r.n_slipping;
+              const double c = cosine(F_t, W);
+              r.n_opposed += c > 0;
+              r.min_cosine    = std::min(r.min_cosine, c);
+              r.max_deviation = std::max(
+                r.max_deviation,
+                coulomb_deviation(
+                  F_t, F * n, parameters.contact.pairs[face.pair].friction));
+            }
+      }
+
+      for (auto &r : result)
+      {
+        r.force_rows        = Utilities::MPI::sum(r.force_rows, comm);
+        r.force_multipliers = Utilities::MPI::sum(r.force_multipliers, comm);
+        r.n_slipping        = Utilities::MPI::sum(r.n_slipping, comm);
+        r.n_opposed         = Utilities::MPI::sum(r.n_opposed, comm);
+        r.min_cosine        = Utilities::MPI::min(r.min_cosine, comm);
+        r.max_deviation     = Utilities::MPI::max(r.max_deviation, comm);
+      }
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        result[p].by_node = node_status_pair[p];
+      return result;
+    }
+
+
+    template std::vector<typename ContactProblem<2>::LawCheck>
+    ContactProblem<2>::law_checks(const TrilinosWrappers::MPI::Vector &) const;
+    template std::vector<typename ContactProblem<3>::LawCheck>
+    ContactProblem<3>::law_checks(const TrilinosWrappers::MPI::Vector &) const;
+  } // namespace Contact
+} // namespace Signorini
