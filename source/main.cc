@@ -43,6 +43,7 @@ main(int argc, char *argv[])
       ParameterHandler   prm;
       Signorini::Counts  counts;
       counts.n_neumann = 1; // show one of each numbered subsection
+      counts.n_pairs   = 1;
       Signorini::Parameters::declare_parameters(prm, counts);
       if (root)
         prm.print_parameters(std::cout, ParameterHandler::PRM);

@@ -6,6 +6,12 @@
 
 #include <deal.II/fe/fe_q.h>
 
+#include <deal.II/base/function_signed_distance.h>
+
+#include <signorini/contact/obstacles/cylinder.h>
+#include <signorini/contact/obstacles/level_set.h>
+#include <signorini/contact/obstacles/plane.h>
+#include <signorini/contact/obstacles/sphere.h>
 #include <signorini/contact/projection.h>
 
 #include <cmath>
@@ -325,7 +331,7 @@ namespace
   template <int dim>
   void
   check_rigid(const std::string          &name,
-              const RigidProjection<dim> &r,
+              const Signorini::Obstacles::Projection<dim> &r,
               const Point<dim>           &x_m,
               const Tensor<1, dim>       &n,
               const double                g)
@@ -345,7 +351,7 @@ namespace
     deallog << "--- rigid obstacles" << std::endl;
     {
       // obstacle y < 1 (outward normal +y); contact normal -y (into it)
-      RigidPlane<2> plane(Point<2>(0., 1.), Tensor<1, 2>({0., 3.}));
+      Signorini::Obstacles::Plane<2> plane(Point<2>(0., 1.), Tensor<1, 2>({0., 3.}));
       check_rigid<2>("plane 2D, penetrating",
                      plane.project(Point<2>(0.3, 0.9)),
                      Point<2>(0.3, 1.),
@@ -365,7 +371,7 @@ namespace
     }
     {
       const Tensor<1, 3> nu({1., 2., 2.}); // |nu| = 3
-      RigidPlane<3>      plane(Point<3>(1., 0., 0.), nu);
+      Signorini::Obstacles::Plane<3>      plane(Point<3>(1., 0., 0.), nu);
       // p = x0 + 0.5 t - 0.3 nu/3 with t orthogonal to nu
       const Tensor<1, 3> t({2., -1., 0.});
       const Point<3>     p = Point<3>(1., 0., 0.) + 0.5 * t - 0.1 * nu;
@@ -376,7 +382,7 @@ namespace
                      0.3);
     }
     {
-      RigidSphere<2> circle(Point<2>(1., 1.), 2.);
+      Signorini::Obstacles::Sphere<2> circle(Point<2>(1., 1.), 2.);
       check_rigid<2>("circle, penetrating",
                      circle.project(Point<2>(1. + 0.6 * 1.5, 1. + 0.8 * 1.5)),
                      Point<2>(1. + 0.6 * 2., 1. + 0.8 * 2.),
@@ -391,7 +397,7 @@ namespace
     }
     {
       const Point<3> c(1., 2., 3.);
-      RigidSphere<3> sphere(c, 2.);
+      Signorini::Obstacles::Sphere<3> sphere(c, 2.);
       check_rigid<3>("sphere, penetrating",
                      sphere.project(c + Tensor<1, 3>({0., 0., 1.5})),
                      c + Tensor<1, 3>({0., 0., 2.}),
@@ -404,7 +410,7 @@ namespace
                      -1.);
     }
     {
-      RigidCylinder<3> cyl(Point<3>(0., 0., 1.), Tensor<1, 3>({0., 0., 2.}), 1.);
+      Signorini::Obstacles::Cylinder<3> cyl(Point<3>(0., 0., 1.), Tensor<1, 3>({0., 0., 2.}), 1.);
       check_rigid<3>("cylinder, separated",
                      cyl.project(Point<3>(1.2, 1.6, 7.)),
                      Point<3>(0.6, 0.8, 7.),
@@ -417,7 +423,7 @@ namespace
                      Tensor<1, 3>({0., 1., 0.}),
                      0.75);
       // oblique axis e = (1,1,0)/sqrt(2), p = a + 3 e + 0.5 z
-      RigidCylinder<3>   ob(Point<3>(), Tensor<1, 3>({1., 1., 0.}), 0.8);
+      Signorini::Obstacles::Cylinder<3>   ob(Point<3>(), Tensor<1, 3>({1., 1., 0.}), 0.8);
       const Tensor<1, 3> e = Tensor<1, 3>({1., 1., 0.}) / std::sqrt(2.);
       check_rigid<3>("cylinder, oblique axis, penetrating",
                      ob.project(Point<3>() + 3. * e +
@@ -427,13 +433,125 @@ namespace
                      0.3);
     }
     {
-      RigidCylinder<2> disk(Point<2>(0., 0.), 1.);
+      Signorini::Obstacles::Cylinder<2> disk(Point<2>(0., 0.), Tensor<1, 2>(), 1.);
       check_rigid<2>("cylinder 2D (disk), penetrating",
                      disk.project(Point<2>(0., -0.4)),
                      Point<2>(0., -1.),
                      Tensor<1, 2>({0., 1.}),
                      0.6);
     }
+  }
+
+  /**
+   * dn/dp and dx^m/dp of an obstacle against central differences of its
+   * projection (step 1e-6), relative to the largest entry, to @p tol; and
+   * the gap consistent with them: g = (p - x^m) . n.
+   */
+  template <int dim>
+  void
+  check_rigid_derivatives(const std::string &            name,
+                          const Signorini::Obstacles::Interface<dim> &obstacle,
+                          const Point<dim> &             p,
+                          const double                   tol)
+  {
+    const auto     r = obstacle.project(p);
+    const double   h = 1e-6;
+    Tensor<2, dim> dn, dx;
+    for (unsigned int j = 0; j < dim; ++j)
+      {
+        Point<dim> plus = p, minus = p;
+        plus[j] += h;
+        minus[j] -= h;
+        const auto rp = obstacle.project(plus), rm = obstacle.project(minus);
+        for (unsigned int i = 0; i < dim; ++i)
+          {
+            dn[i][j] = (rp.normal[i] - rm.normal[i]) / (2 * h);
+            dx[i][j] = (rp.x_m[i] - rm.x_m[i]) / (2 * h);
+          }
+      }
+    const double scale = std::max(1., dx.norm());
+    verdict(name + " dn/dp", (dn - r.dnormal).norm() / scale, tol);
+    verdict(name + " dx^m/dp", (dx - r.dclosest).norm() / scale, tol);
+    verdict(name + " g = (p - x^m) . n",
+            std::abs((p - r.x_m) * r.normal - r.gap),
+            1e-12);
+  }
+
+  /**
+   * The obstacles' derivatives at generic points, and the level set: the
+   * signed distance of a sphere as an expression (derivatives by
+   * differences) and as Functions::SignedDistance::Sphere (exact) gives
+   * the sphere's projection.
+   */
+  void
+  test_rigid_derivatives()
+  {
+    deallog << "--- rigid obstacle derivatives" << std::endl;
+    check_rigid_derivatives<2>("plane 2D",
+                               Signorini::Obstacles::Plane<2>(Point<2>(0., 1.),
+                                                   Tensor<1, 2>({1., 3.})),
+                               Point<2>(0.3, 0.9),
+                               1e-8);
+    check_rigid_derivatives<3>("sphere 3D",
+                               Signorini::Obstacles::Sphere<3>(Point<3>(1., 2., 3.), 2.),
+                               Point<3>(1.5, 2.7, 4.1),
+                               1e-8);
+    check_rigid_derivatives<3>(
+      "cylinder 3D, oblique axis",
+      Signorini::Obstacles::Cylinder<3>(Point<3>(), Tensor<1, 3>({1., 1., 0.}), 0.8),
+      Point<3>(0.4, 1.1, 0.5),
+      1e-8);
+    check_rigid_derivatives<2>("cylinder 2D (disk)",
+                               Signorini::Obstacles::Cylinder<2>(Point<2>(),
+                                                      Tensor<1, 2>(),
+                                                      1.),
+                               Point<2>(0.3, -0.7),
+                               1e-8);
+
+    const Point<3>       c(1., 2., 3.);
+    Signorini::Obstacles::Sphere<3> sphere(c, 2.);
+    ParameterHandler     prm;
+    Signorini::Obstacles::LevelSet<3>::declare_parameters(prm);
+    prm.parse_input_from_string(
+      "subsection Level set\n"
+      "  set Function = sqrt((x-a)^2 + (y-b)^2 + (z-c)^2) - R\n"
+      "  set Function constants = a: 1, b: 2, c: 3, R: 2\n"
+      "end\n");
+    Signorini::Obstacles::LevelSet<3> expression;
+    expression.parse_parameters(prm);
+    expression.set_length_scale(0.1);
+    deallog << "expression: " << expression.approximate_derivatives()
+            << std::endl;
+    Signorini::Obstacles::LevelSet<3> exact;
+    exact.set_function(
+      std::make_shared<Functions::SignedDistance::Sphere<3>>(c, 2.),
+      true,
+      true);
+    expect("exact level set: derivatives exact",
+           exact.approximate_derivatives().empty());
+    for (const auto &p : {Point<3>(1.5, 2.7, 4.1), Point<3>(2.9, 1.5, 3.2)})
+      {
+        const auto s = sphere.project(p);
+        for (const auto *level_set : {&expression, &exact})
+          {
+            const auto        r    = level_set->project(p);
+            const std::string name = std::string("level set (") +
+                                     (level_set == &exact ? "exact" :
+                                                            "expression") +
+                                     ") = sphere";
+            const double tol = level_set == &exact ? 1e-12 : 5e-10;
+            verdict(name + ": x_m", (r.x_m - s.x_m).norm(), tol);
+            verdict(name + ": normal", (r.normal - s.normal).norm(), tol);
+            verdict(name + ": gap", std::abs(r.gap - s.gap), tol);
+            verdict(name + ": dn/dp",
+                    (r.dnormal - s.dnormal).norm(),
+                    level_set == &exact ? 1e-12 : 2e-8);
+            verdict(name + ": dx^m/dp",
+                    (r.dclosest - s.dclosest).norm(),
+                    level_set == &exact ? 1e-12 : 2e-8);
+          }
+        check_rigid_derivatives<3>("level set (exact)", exact, p, 1e-8);
+      }
   }
 
   /**
@@ -539,6 +657,7 @@ main()
   test_q2_sphere();
   test_outside();
   test_rigid();
+  test_rigid_derivatives();
   test_derivatives();
 
   deallog << "OK" << std::endl;

@@ -85,12 +85,14 @@ namespace Signorini
       const Parameters &                                                parameters,
       const FESystem<dim> &                                             fe,
       const DoFHandler<dim> &                                           dof_handler,
-      const std::map<types::material_id, Material::ElasticMaterial<dim>> &materials,
+      const Bulk::Materials<dim> &materials,
+      std::vector<std::unique_ptr<Obstacles::Interface<dim>>> &&obstacles_in,
       const MPI_Comm                                                    comm)
       : parameters(parameters)
       , dof_handler(dof_handler)
       , fe(fe)
       , materials(materials)
+      , obstacles(std::move(obstacles_in))
       , comm(comm)
       , face_fe(parameters.fe_degree)
     {
@@ -119,7 +121,7 @@ namespace Signorini
           // master (the others have one law per node).
           node_status_pair.push_back(
             contact.node_status && contact.rule != IntegrationRule::nodal &&
-            pair.master == MasterType::body);
+            pair.master_is_body());
           friction_node_pair.push_back(node_status_pair.back() &&
                                        pair.friction > 0);
           any_friction_node = any_friction_node || friction_node_pair.back();
@@ -128,7 +130,7 @@ namespace Signorini
           newton_geometry_pair.push_back(
             contact.newton_geometry &&
             (pair.friction == 0 || contact.newton_geometry_all) &&
-            pair.master != MasterType::body &&
+            !pair.master_is_body() &&
             contact.normal == NormalChoice::master);
           // Newton on the pairing of a meshed master ('newton' only; auto
           // keeps the fixed point, doc/robustness.md): frictionless (the
@@ -137,7 +139,7 @@ namespace Signorini
           // the master normal.
           newton_pairing_pair.push_back(
             contact.newton_geometry_all && pair.friction == 0 &&
-            pair.master == MasterType::body && !mortar &&
+            pair.master_is_body() && !mortar &&
             contact.normal == NormalChoice::master);
           pairing_exact = (p == 0 || pairing_exact) &&
                           newton_geometry_pair.back() &&
@@ -145,7 +147,7 @@ namespace Signorini
           // A frictionless meshed master paired at fixed points and
           // normals within each Newton solve.
           const bool frictionless_fixed_body =
-            pair.friction == 0 && pair.master == MasterType::body &&
+            pair.friction == 0 && pair.master_is_body() &&
             !newton_pairing_pair.back();
           // Pairing at status changes: those pairs, with a point rule.
           pairing_in_newton = (p == 0 || pairing_in_newton) &&
@@ -154,35 +156,11 @@ namespace Signorini
           linear_statuses =
             (p == 0 || linear_statuses) &&
             (frictionless_fixed_body ||
-             (pair.friction == 0 && pair.master == MasterType::plane));
-          if (pair.master == MasterType::body)
+             (pair.friction == 0 && obstacles[p] && obstacles[p]->flat()));
+          if (pair.master_is_body())
             {
-              obstacles.emplace_back();
               motions.emplace_back();
               continue;
-            }
-          const Point<dim> point(to_tensor<dim>(pair.obstacle_point));
-          switch (pair.master)
-            {
-              case MasterType::plane:
-                obstacles.push_back(std::make_unique<RigidPlane<dim>>(
-                  point, to_tensor<dim>(pair.obstacle_normal)));
-                break;
-              case MasterType::sphere:
-                obstacles.push_back(
-                  std::make_unique<RigidSphere<dim>>(point,
-                                                     pair.obstacle_radius));
-                break;
-              default:
-                if constexpr (dim == 3)
-                  obstacles.push_back(std::make_unique<RigidCylinder<dim>>(
-                    point,
-                    to_tensor<dim>(pair.obstacle_axis),
-                    pair.obstacle_radius));
-                else
-                  obstacles.push_back(
-                    std::make_unique<RigidCylinder<dim>>(point,
-                                                         pair.obstacle_radius));
             }
           auto motion = std::make_unique<FunctionParser<dim>>(dim);
           try
@@ -410,7 +388,7 @@ namespace Signorini
                                " is already the slave surface of " +
                                pair_name(slave_of[id]) +
                                ". Each slave boundary belongs to one pair.");
-          if (pairs[p].master == MasterType::body)
+          if (pairs[p].master_is_body())
             for (const auto id : pairs[p].master_ids)
               master_of.emplace(id, p);
         }
@@ -521,7 +499,7 @@ namespace Signorini
                         h_count[p] += 1;
                         e_max[p] = std::max(
                           e_max[p],
-                          materials.at(cell->material_id()).youngs_modulus());
+                          materials.at(cell->material_id())->representative_modulus());
                         slave_faces.push_back(face);
                       }
                   }
@@ -537,7 +515,7 @@ namespace Signorini
                     own_master_cells.push_back(cell);
                     e_master[m->second] = std::max(
                       e_master[m->second],
-                      materials.at(cell->material_id()).youngs_modulus());
+                      materials.at(cell->material_id())->representative_modulus());
                     // Nodes in the face's FE_Q<dim-1> order (see
                     // project_onto_face), dim DoFs each.
                     std::vector<types::global_dof_index> node_dofs(
@@ -614,6 +592,8 @@ namespace Signorini
                            pairs[p].rho_t_factor * rho_n[p] /
                              (pairs[p].friction * p_ref[p]) :
                            1.;
+          if (obstacles[p])
+            obstacles[p]->set_length_scale(face_size[p]);
         }
 
       // Owned slave nodes: exclusion (Dirichlet on a component along the
@@ -812,7 +792,7 @@ namespace Signorini
       multiplier_ghosts.compress();
 
       for (unsigned int p = 0; p < n_pairs; ++p)
-        if (pairs[p].master == MasterType::body)
+        if (pairs[p].master_is_body())
           {
             bool found = false;
             for (const auto &f : master_faces)
@@ -884,6 +864,11 @@ namespace Signorini
               << ", h = " << std::setprecision(4) << face_size[p]
               << ", rho_n = " << rho_n[p] << ", rho_t = " << rho_t[p]
               << std::setprecision(6) << std::endl;
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        if (obstacles[p] && !obstacles[p]->approximate_derivatives().empty())
+          pcout << "  pair " << p + 1 << ": "
+                << obstacles[p]->approximate_derivatives()
+                << ": the contact Jacobian is not exact" << std::endl;
       if (n_excluded_contact + n_excluded_friction > 0)
         pcout << "  over-constraint: " << n_excluded_contact
               << " slave node(s) with a Dirichlet condition along the normal "

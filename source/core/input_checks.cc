@@ -434,10 +434,8 @@ namespace Signorini
 
 
   std::map<std::string, double>
-  parse_function_constants(const std::string &text)
+  parse_function_constants(const std::string &text, const std::string &where)
   {
-    const std::string where =
-      "subsection 'Boundary conditions', parameter 'Function constants': ";
     const std::string format =
       " Write 'name: value' entries separated by commas, e.g. 'p0: 1e5, R: "
       "0.1'.";

@@ -2,6 +2,8 @@
 
 #include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
+#include <signorini/contact/obstacles/interface.h>
+#include <signorini/material/interface.h>
 
 #include <algorithm>
 #include <cmath>
@@ -287,6 +289,7 @@ namespace Signorini
                       Patterns::Double(-0.999999, 0.499999),
                       "Poisson's ratio nu [-], -1 < nu < 0.5 (plane strain "
                       "in 2D).");
+    Material::declare_model_parameters(prm);
   }
 
 
@@ -294,6 +297,7 @@ namespace Signorini
   MaterialParameters::parse_parameters(ParameterHandler &prm)
   {
     material_id    = prm.get_integer("Material id");
+    model          = prm.get("Model");
     youngs_modulus = prm.get_double("Young's modulus");
     poissons_ratio = prm.get_double("Poisson's ratio");
   }
@@ -695,44 +699,17 @@ namespace Signorini
                       Patterns::List(Patterns::Integer(0, 255), 0),
                       "Boundary id(s) of the slave surface (one body): the "
                       "contact multipliers live on its nodes.");
-    prm.declare_entry("Master",
-                      "body",
-                      Patterns::Selection("body|plane|sphere|cylinder"),
-                      "Master surface: 'body' (the faces 'Master boundary "
-                      "id' of another meshed body) or a rigid analytic "
-                      "obstacle: 'plane' (half-space behind 'Obstacle point' "
-                      "with outward 'Obstacle normal'), 'sphere' (disc in "
-                      "2D: centre 'Obstacle point', 'Obstacle radius'), "
-                      "'cylinder' (3D: axis through 'Obstacle point' along "
-                      "'Obstacle axis'; a disc in 2D).");
+    Obstacles::declare_master_parameters(prm);
     prm.declare_entry("Master boundary id",
                       "",
                       Patterns::List(Patterns::Integer(0, 255), 0),
                       "Boundary id(s) of the master surface for Master = "
                       "body.");
-    prm.declare_entry("Obstacle point",
-                      "0, 0, 0",
-                      point_pattern(),
-                      "Reference point of a rigid obstacle at t = 0 [m]: a "
-                      "point of the plane, the centre of the sphere, a point "
-                      "of the cylinder axis.");
-    prm.declare_entry("Obstacle normal",
-                      "0, 1, 0",
-                      point_pattern(),
-                      "Outward normal of a rigid plane (pointing out of the "
-                      "obstacle, towards the slave body).");
-    prm.declare_entry("Obstacle axis",
-                      "0, 0, 1",
-                      point_pattern(),
-                      "Axis direction of a rigid cylinder (3D).");
-    prm.declare_entry("Obstacle radius",
-                      "1",
-                      Patterns::Double(1e-300),
-                      "Radius of a rigid sphere or cylinder [m].");
     prm.declare_entry("Obstacle motion",
                       "0; 0; 0",
                       Patterns::Anything(),
-                      "Translation of the rigid obstacle as Dimension "
+                      "Translation of a rigid obstacle from its position "
+                      "at t = 0, as Dimension "
                       "expressions of t (and 'Function constants') "
                       "separated by ';' [m].");
     prm.declare_entry("Friction coefficient",
@@ -773,15 +750,7 @@ namespace Signorini
   {
     slave_ids  = to_unsigned(prm.get("Slave boundary id"));
     master_ids = to_unsigned(prm.get("Master boundary id"));
-    const std::string m = prm.get("Master");
-    master = m == "body"  ? MasterType::body :
-             m == "plane" ? MasterType::plane :
-             m == "sphere" ? MasterType::sphere :
-                             MasterType::cylinder;
-    obstacle_point  = to_doubles(prm.get("Obstacle point"));
-    obstacle_normal = to_doubles(prm.get("Obstacle normal"));
-    obstacle_axis   = to_doubles(prm.get("Obstacle axis"));
-    obstacle_radius = prm.get_double("Obstacle radius");
+    master          = prm.get("Master");
     obstacle_motion = split_expressions(prm.get("Obstacle motion"));
     friction        = prm.get_double("Friction coefficient");
     rho_n_factor    = prm.get_double("Normal coefficient");
@@ -1012,7 +981,7 @@ namespace Signorini
     // integration-point rule; with friction they need the Newton threshold.
     for (unsigned int k = 0; k < pairs.size(); ++k)
       if (node_status && frozen_threshold && rule != IntegrationRule::nodal &&
-          pairs[k].master == MasterType::body && pairs[k].friction > 0)
+          pairs[k].master_is_body() && pairs[k].friction > 0)
         throw InputError(
           "subsection 'Contact', parameter 'Friction threshold' = frozen: "
           "pair " + std::to_string(k + 1) + " (friction on a meshed master, "
@@ -1557,7 +1526,7 @@ namespace Signorini
         if (p.slave_ids.empty())
           throw InputError(where + ", parameter 'Slave boundary id': give "
                                    "the boundary id(s) of the slave surface.");
-        if (p.master == MasterType::body)
+        if (p.master_is_body())
           {
             if (p.master_ids.empty())
               throw InputError(where + ", parameter 'Master boundary id': "
@@ -1572,26 +1541,6 @@ namespace Signorini
           }
         else
           {
-            if (p.obstacle_point.size() < dim)
-              throw InputError(where + ", parameter 'Obstacle point': give " +
-                               std::to_string(dim) + " coordinates.");
-            if (p.master == MasterType::plane &&
-                (p.obstacle_normal.size() < dim ||
-                 std::sqrt(std::inner_product(p.obstacle_normal.begin(),
-                                              p.obstacle_normal.begin() + dim,
-                                              p.obstacle_normal.begin(),
-                                              0.)) == 0.))
-              throw InputError(where + ", parameter 'Obstacle normal': give " +
-                               std::to_string(dim) +
-                               " coordinates of a nonzero vector.");
-            if (p.master == MasterType::cylinder && dim == 3 &&
-                (p.obstacle_axis.size() < 3 ||
-                 std::sqrt(std::inner_product(p.obstacle_axis.begin(),
-                                              p.obstacle_axis.begin() + 3,
-                                              p.obstacle_axis.begin(),
-                                              0.)) == 0.))
-              throw InputError(where + ", parameter 'Obstacle axis': give 3 "
-                                       "coordinates of a nonzero vector.");
             if (p.obstacle_motion.size() < dim)
               throw InputError(where + ", parameter 'Obstacle motion': give " +
                                std::to_string(dim) +

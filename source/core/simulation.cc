@@ -151,9 +151,9 @@ namespace Signorini
 
 
   template <int dim>
-  Simulation<dim>::Simulation(const Parameters &      parameters,
-                              const ParameterHandler &prm,
-                              const MPI_Comm          mpi_communicator)
+  Simulation<dim>::Simulation(const Parameters &parameters,
+                              ParameterHandler &prm,
+                              const MPI_Comm    mpi_communicator)
     : parameters(parameters)
     , prm(prm)
     , mpi_communicator(mpi_communicator)
@@ -162,6 +162,8 @@ namespace Signorini
               parameters.output.verbosity != Verbosity::quiet)
     , sout(std::cout,
            Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    , materials(Material::make_materials<dim>(parameters, prm))
+    , obstacles(Obstacles::make_obstacles<dim>(parameters, prm))
     , timer(mpi_communicator,
             sout,
             TimerOutput::never,
@@ -170,7 +172,6 @@ namespace Signorini
                     Triangulation<dim>::limit_level_difference_at_vertices)
     , fe(FE_Q<dim>(parameters.fe_degree), dim)
     , dof_handler(triangulation)
-    , materials(Material::make_materials<dim>(parameters))
     , linear_solver(
         std::make_unique<Solver::LinearSolver<dim>>(parameters.linear_solver))
     , contact_reference_checks(parameters)
@@ -193,8 +194,27 @@ namespace Signorini
                                bc.body_force.begin() + dim),
       bc.constants,
       "subsection 'Boundary conditions', parameter 'Body force'");
+    for (const auto &[id, material] : materials)
+      materials_linear &= material->is_linear();
+    bulk = std::make_unique<Bulk::Assembler<dim>>(
+      parameters, fe, materials, neumann_functions, *body_force);
     contact = std::make_unique<Contact::ContactProblem<dim>>(
-      parameters, fe, dof_handler, materials, mpi_communicator);
+      parameters,
+      fe,
+      dof_handler,
+      materials,
+      std::move(obstacles),
+      mpi_communicator);
+  }
+
+
+  template <int dim>
+  std::vector<typename Contact::ContactProblem<dim>::PairSummary>
+  Simulation<dim>::contact_summary() const
+  {
+    return contact->active() ? contact->summary() :
+                               std::vector<typename Contact::ContactProblem<
+                                 dim>::PairSummary>();
   }
 
 
@@ -499,152 +519,13 @@ namespace Signorini
     internal_force = 0;
     external_force = 0;
 
-    const QGauss<dim>     quadrature(fe.degree + 1);
-    const QGauss<dim - 1> face_quadrature(fe.degree + 1);
-    FEValues<dim>         fe_values(fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_quadrature_points | update_JxW_values);
-    FEFaceValues<dim>     fe_face_values(fe,
-                                     face_quadrature,
-                                     update_values | update_quadrature_points |
-                                       update_normal_vectors |
-                                       update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    // B-bar (Volumetric strain = projected): the lambda term from the
-    // volumetric strain projected in each cell.
-    const bool projected = parameters.projected_volumetric_strain;
-    Material::ProjectedVolumetricStrain<dim> projection(
-      fe, quadrature, parameters.axisymmetric);
-    Vector<double> local_u(fe.n_dofs_per_cell()), theta_bar;
-
-    const unsigned int n = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n, n);
-    Vector<double>     cell_rhs(n), cell_fint(n), cell_fext(n);
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<SymmetricTensor<2, dim>> strains(quadrature.size());
-    std::vector<SymmetricTensor<2, dim>> sym_grad(n);
-    std::vector<Tensor<1, dim>>          u_values(quadrature.size());
-    std::vector<double>                  hoop_i(n), trace_i(n);
-    Vector<double>                       force_values(dim);
-    const bool axisymmetric = parameters.axisymmetric;
-
-    const auto &bc = parameters.boundary_conditions;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell_matrix = 0;
-          cell_fint   = 0;
-          cell_fext   = 0;
-          const auto &material = materials.at(cell->material_id());
-          fe_values[displacement].get_function_symmetric_gradients(solution,
-                                                                   strains);
-          if (axisymmetric)
-            fe_values[displacement].get_function_values(solution, u_values);
-          if (projected)
-            projection.start_cell();
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const Point<dim> &x = fe_values.quadrature_point(q);
-              // Axisymmetric: the ring of radius r = x carries 2 pi r.
-              const double JxW =
-                fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-              for (unsigned int i = 0; i < n; ++i)
-                sym_grad[i] =
-                  fe_values[displacement].symmetric_gradient(i, q);
-              body_force->vector_value(x, force_values);
-              // Isotropic: sigma = lambda tr(eps) I + 2 mu eps. In an
-              // axisymmetric model eps has a fourth component, the hoop
-              // strain u_r / r, which enters the trace and the work; it is
-              // zero in plane strain and 3D.
-              // Projected: the lambda term is added per cell below.
-              const double lambda = projected ? 0. : material.lambda;
-              const double mu     = material.mu;
-              const double hoop = axisymmetric ? u_values[q][0] / x[0] : 0.;
-              const double volumetric =
-                projected ? 0. : trace(strains[q]) + hoop;
-              const SymmetricTensor<2, dim> stress =
-                material.stress_from_volumetric(strains[q], volumetric);
-              const double stress_hoop =
-                material.stress_33_from_volumetric(hoop, volumetric);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  const unsigned int comp =
-                    fe.system_to_component_index(i).first;
-                  hoop_i[i] = axisymmetric && comp == 0 ?
-                                fe_values.shape_value(i, q) / x[0] :
-                                0.;
-                  trace_i[i] = trace(sym_grad[i]) + hoop_i[i];
-                  cell_fint(i) +=
-                    (stress * sym_grad[i] + stress_hoop * hoop_i[i]) * JxW;
-                  cell_fext(i) +=
-                    force_values(comp) * fe_values.shape_value(i, q) * JxW;
-                }
-              if (projected)
-                projection.add_point(q, JxW, trace_i);
-              if (with_matrix)
-                for (unsigned int i = 0; i < n; ++i)
-                  for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) +=
-                      (lambda * trace_i[i] * trace_i[j] +
-                       2 * mu *
-                         (sym_grad[i] * sym_grad[j] + hoop_i[i] * hoop_i[j])) *
-                      JxW;
-            }
-          if (projected)
-            {
-              projection.finish_cell();
-              cell->get_dof_values(solution, local_u);
-              projection.coefficients(local_u, theta_bar);
-              projection.add_cell_terms(material.lambda,
-                                        theta_bar,
-                                        cell_fint,
-                                        with_matrix ? &cell_matrix : nullptr);
-            }
-
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              for (unsigned int k = 0; k < bc.neumann.size(); ++k)
-                if (std::count(bc.neumann[k].boundary_ids.begin(),
-                               bc.neumann[k].boundary_ids.end(),
-                               cell->face(f)->boundary_id()))
-                  {
-                    fe_face_values.reinit(cell, f);
-                    auto &g = *neumann_functions[k];
-                    for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                      {
-                        Tensor<1, dim> traction;
-                        const auto &   x = fe_face_values.quadrature_point(q);
-                        if (bc.neumann[k].type == NeumannType::traction)
-                          for (unsigned int d = 0; d < dim; ++d)
-                            traction[d] = g.value(x, d);
-                        else
-                          traction =
-                            -g.value(x, 0) * fe_face_values.normal_vector(q);
-                        const double ring =
-                          axisymmetric ? 2 * numbers::PI * x[0] : 1.;
-                        for (unsigned int i = 0; i < n; ++i)
-                          cell_fext(i) +=
-                            traction[fe.system_to_component_index(i).first] *
-                            fe_face_values.shape_value(i, q) *
-                            fe_face_values.JxW(q) * ring;
-                      }
-                  }
-
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < n; ++i)
-            cell_rhs(i) = cell_fext(i) - cell_fint(i);
-          if (with_matrix)
-            constraints_update.distribute_local_to_global(
-              cell_matrix, cell_rhs, dofs, system_matrix, newton_rhs);
-          else
-            constraints_update.distribute_local_to_global(cell_rhs,
-                                                          dofs,
-                                                          newton_rhs);
-          internal_force.add(dofs, cell_fint);
-          external_force.add(dofs, cell_fext);
-        }
+    bulk->assemble(dof_handler,
+                   solution,
+                   constraints_update,
+                   with_matrix ? &system_matrix : nullptr,
+                   newton_rhs,
+                   internal_force,
+                   external_force);
     timer.leave_subsection("bulk assembly");
     contact_force = 0;
     if (contact->active())
@@ -884,7 +765,8 @@ namespace Signorini
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            double w = materials.at(cell->material_id()).youngs_modulus();
+            double w =
+              materials.at(cell->material_id())->representative_modulus();
             if (parameters.axisymmetric)
               w *= std::max(cell->center()[0], cell->diameter());
             indicator[cell->active_cell_index()] *= std::sqrt(w);
@@ -1130,7 +1012,8 @@ namespace Signorini
         // and Newton can do no more: its last step no longer halved the
         // residual (stagnation), or it was an exact step of equations
         // linear at fixed statuses (a direct solve, the full update;
-        // contact->linear_at_fixed_statuses(), the bulk linear elastic),
+        // contact->linear_at_fixed_statuses(), and every material says
+        // is_linear()),
         // after which what is left is round-off. A Newton that still
         // contracts, or one that stalls above round-off (a Jacobian that is
         // not the derivative of the residual), is never accepted here.
@@ -1148,7 +1031,7 @@ namespace Signorini
         settled_before  = statuses_settled;
         residual_before = residual;
         const bool exact_step =
-          step_exact && statuses_settled &&
+          step_exact && statuses_settled && materials_linear &&
           (!contact->active() || contact->linear_at_fixed_statuses());
         const bool at_floor =
           residual <= roundoff_floor && (stagnated || exact_step);
@@ -1564,7 +1447,7 @@ namespace Signorini
     // of 1e-12 E and central differences of round-off noise, 6e-5).
     double E_max = 0;
     for (const auto &[id, material] : materials)
-      E_max = std::max(E_max, material.youngs_modulus());
+      E_max = std::max(E_max, material->representative_modulus());
     const double floor[3] = {1e-6 * model_size,
                              1e-3 * E_max,
                              1.};
@@ -1764,7 +1647,7 @@ namespace Signorini
               cell->get_dof_values(solution, local_u);
               projection.coefficients(local_u, theta_bar);
             }
-          const auto &material = materials.at(cell->material_id());
+          const auto &material = *materials.at(cell->material_id());
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const auto &x = fe_values.quadrature_point(q);
@@ -1780,13 +1663,21 @@ namespace Signorini
                   // Axisymmetric: the hoop strain u_r / r enters the trace.
                   const double hoop =
                     parameters.axisymmetric ? u_h[q][0] / x[0] : 0.;
-                  const SymmetricTensor<2, dim> s =
+                  const double theta =
                     parameters.projected_volumetric_strain ?
-                      material.stress_from_volumetric(
-                        eps_h[q],
-                        projection.value(theta_bar, quadrature.point(q))) :
-                      material.stress(eps_h[q], hoop);
-                  double                        e2 = 0, n2 = 0;
+                      projection.value(theta_bar, quadrature.point(q)) :
+                      0.;
+                  SymmetricTensor<2, 3> stress;
+                  material.evaluate(
+                    Bulk::point_strain<dim>(
+                      eps_h[q],
+                      hoop,
+                      parameters.projected_volumetric_strain ? &theta :
+                                                               nullptr),
+                    stress,
+                    nullptr);
+                  const auto s = Material::from_3d<dim>(stress);
+                  double     e2 = 0, n2 = 0;
                   for (unsigned int i = 0; i < dim; ++i)
                     for (unsigned int j = 0; j < dim; ++j)
                       {
@@ -2408,6 +2299,10 @@ namespace Signorini
                   total_iterations += iterations;
                   last_converged = state;
                   none_converged = false;
+                  // The quadrature-point history of the materials follows
+                  // the converged (sub)steps only.
+                  for (auto &[id, material] : materials)
+                    material->commit();
                   t_done         = t_target;
                   t_target       = times[step - 1];
                 }
@@ -2420,6 +2315,8 @@ namespace Signorini
                   append_newton_history();
                   state = last_converged;
                   update_solution();
+                  for (auto &[id, material] : materials)
+                    material->roll_back();
                   // Back to the initial state: the retry needs the initial
                   // multipliers again ('Initial status').
                   if (none_converged)

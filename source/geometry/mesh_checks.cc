@@ -487,7 +487,7 @@ namespace Signorini
                 "pairs'), and bodies distinct boundary ids ('Boundary ids', "
                 "or 'Boundary id map' for a mesh file).");
             }
-          if (pair.master != MasterType::body || slave_parts.empty())
+          if (!pair.master_is_body() || slave_parts.empty())
             continue;
           const auto &slave = *slave_parts.begin();
           for (const auto id : pair.master_ids)

@@ -448,6 +448,11 @@ namespace Signorini
            true});
         return;
       }
+      // A tangential force below 1e-4 mu P is no tangential load: it moves
+      // c by less than 1e-4 a, and a symmetric pressing step can leave
+      // one of about 5e-7 P that depends on round-off (anti-cycling
+      // freezes on 2 ranks, where MUMPS sums in a varying order).
+      const double small = 1e-4 * mu * P;
       // The tangent: across n in 2D, the first tangential force's
       // direction in 3D.
       if (mindlin_tangent.norm() == 0)
@@ -457,11 +462,10 @@ namespace Signorini
           mindlin_tangent[0] = n[1];
           mindlin_tangent[1] = -n[0];
         }
-        else if (F_t.norm() > 1e-6 * mu * P)
+        else if (F_t.norm() > small)
           mindlin_tangent = F_t / F_t.norm();
       }
-      const double Q     = F * mindlin_tangent;
-      const double small = 1e-6 * mu * P;
+      const double Q = F * mindlin_tangent;
       if (mindlin_direction == 0 && std::abs(Q) > small)
         mindlin_direction = Q > 0 ? 1 : -1;
       else if (mindlin_direction != 0 &&

@@ -17,9 +17,10 @@
 
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/integration_rule.h>
+#include <signorini/contact/obstacles/interface.h>
 #include <signorini/contact/projection.h>
 #include <signorini/core/parameters.h>
-#include <signorini/material/elastic_material.h>
+#include <signorini/bulk/assembler.h>
 
 #include <limits>
 #include <map>
@@ -83,8 +84,9 @@ namespace Signorini
       ContactProblem(const Parameters &     parameters,
                      const FESystem<dim> &  fe,
                      const DoFHandler<dim> &dof_handler,
-                     const std::map<types::material_id,
-                                    Material::ElasticMaterial<dim>> &materials,
+                     const Bulk::Materials<dim> &materials,
+                     std::vector<std::unique_ptr<Obstacles::Interface<dim>>>
+                       &&obstacles,
                      const MPI_Comm                                 comm);
 
       bool
@@ -780,8 +782,7 @@ namespace Signorini
       const Parameters &     parameters;
       const DoFHandler<dim> &dof_handler;
       const FESystem<dim> &  fe;
-      const std::map<types::material_id, Material::ElasticMaterial<dim>>
-        &      materials;
+      const Bulk::Materials<dim> &materials;
       MPI_Comm comm;
       FE_Q<dim - 1> face_fe; // master face parametrisation
 
@@ -790,7 +791,7 @@ namespace Signorini
       std::unique_ptr<SlaveRule<dim>>                  rule;
       bool                                             mortar = false;
       unsigned int                                     segment_order = 0;
-      std::vector<std::unique_ptr<RigidObstacle<dim>>> obstacles; // per pair
+      std::vector<std::unique_ptr<Obstacles::Interface<dim>>> obstacles; // per pair
       std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
       std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
       std::vector<bool>   node_status_pair; // per pair

@@ -77,10 +77,14 @@ namespace Signorini
    * Parses 'Function constants' ("name: value, name: value"), refusing empty
    * entries, missing or non-numeric values, duplicate names and names that
    * muparser cannot define or that clash with a variable or a built-in
-   * function.
+   * function. @p where starts the message ("subsection '...', parameter
+   * '...': ").
    */
   std::map<std::string, double>
-  parse_function_constants(const std::string &text);
+  parse_function_constants(
+    const std::string &text,
+    const std::string &where =
+      "subsection 'Boundary conditions', parameter 'Function constants': ");
 
   /**
    * Parses and evaluates every component of every expression of the input

@@ -96,6 +96,7 @@ namespace Signorini
   struct MaterialParameters
   {
     unsigned int material_id;
+    std::string  model; // a name of the Material plug-in family
     double       youngs_modulus;
     double       poissons_ratio;
 
@@ -264,27 +265,23 @@ namespace Signorini
     void        parse_parameters(ParameterHandler &prm);
   };
 
-  /** Kind of master surface of a contact pair. */
-  enum class MasterType
-  {
-    body,     // boundary faces of another meshed body
-    plane,    // rigid analytic half-space
-    sphere,   // rigid disc (2D) or ball (3D)
-    cylinder  // rigid cylinder (3D; a disc in 2D)
-  };
-
   /** One contact pair (subsection Contact/Pair k), formulation.md 2. */
   struct ContactPairParameters
   {
     std::vector<unsigned int> slave_ids;
-    MasterType                master;
+    std::string               master; // "body" or a registered obstacle
     std::vector<unsigned int> master_ids;
-    std::vector<double>       obstacle_point, obstacle_normal, obstacle_axis;
-    double                    obstacle_radius;
     std::vector<std::string>  obstacle_motion; // dim expressions of t
     double                    friction;
     double                    rho_n_factor, rho_t_factor;
     double                    gap_offset;
+
+    /** The master is a meshed body (not a rigid obstacle). */
+    bool
+    master_is_body() const
+    {
+      return master == "body";
+    }
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

@@ -15,7 +15,7 @@
 
 #include <signorini/contact/contact_problem.h>
 #include <signorini/core/parameters.h>
-#include <signorini/material/elastic_material.h>
+#include <signorini/bulk/assembler.h>
 #include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/output_files.h>
 #include <signorini/solver/linear_solver.h>
@@ -59,9 +59,11 @@ namespace Signorini
   class Simulation
   {
   public:
-    Simulation(const Parameters &      parameters,
-               const ParameterHandler &prm,
-               const MPI_Comm          mpi_communicator);
+    /** @p prm: the parameters read into @p parameters (the models of
+     * the materials read their own from it). */
+    Simulation(const Parameters &parameters,
+               ParameterHandler &prm,
+               const MPI_Comm    mpi_communicator);
     ~Simulation();
 
     void
@@ -78,6 +80,11 @@ namespace Signorini
     {
       return errors;
     }
+
+    /** Forces, counts and largest pressure per contact pair at the end
+     * of the run (empty without contact). */
+    std::vector<typename Contact::ContactProblem<dim>::PairSummary>
+    contact_summary() const;
 
     /** Reference checks printed as FAIL over the run (0: all passed). */
     unsigned int
@@ -206,19 +213,28 @@ namespace Signorini
     MPI_Comm                mpi_communicator;
     ConditionalOStream      pcout; // per-step output (off when quiet)
     ConditionalOStream      sout;  // end-of-run summary (always, rank 0)
-    TimerOutput             timer;
+    // The plug-ins the parameters select, created (and their parameters
+    // checked) before anything that reports at its destruction: the
+    // materials per material id and the rigid obstacle of every pair
+    // (nullptr for a meshed master), handed to the contact problem.
+    Bulk::Materials<dim>                                    materials;
+    std::vector<std::unique_ptr<Obstacles::Interface<dim>>> obstacles;
+    TimerOutput                                             timer;
 
     parallel::distributed::Triangulation<dim> triangulation;
     FESystem<dim>                             fe;
     DoFHandler<dim>                           dof_handler;
     IndexSet                                  locally_owned, locally_relevant;
 
-    std::map<types::material_id, Material::ElasticMaterial<dim>> materials;
+    // True if every material is linear without history (Newton's exact
+    // step at fixed contact statuses).
+    bool materials_linear = true;
 
     // Expressions of the loads and Dirichlet data, functions of (x, t).
     std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> neumann_functions;
     std::unique_ptr<FunctionParser<dim>>              body_force;
+    std::unique_ptr<Bulk::Assembler<dim>>             bulk;
 
     AffineConstraints<double> constraints_values; // hanging + Dirichlet(t)
     AffineConstraints<double> constraints_update; // hanging + zero Dirichlet

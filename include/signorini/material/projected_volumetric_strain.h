@@ -13,23 +13,21 @@
 
 /**
  * B-bar against volumetric locking (`Finite element/Volumetric strain =
- * projected`): in the volumetric term lambda tr(eps) tr(eps) of the bulk
- * stiffness, the volumetric strain theta = tr(eps) (plus the hoop strain
+ * projected`): the volumetric strain theta = tr(eps) (plus the hoop strain
  * u_r / r of an axisymmetric model) is replaced in each cell by its L2
  * projection theta_bar onto the polynomials of one degree less in the unit
  * cell (a constant for Q1, the mean dilatation; Q1 in each unit coordinate
  * for Q2), with the weight of the cell's volume (2 pi r dA axisymmetric):
  *
  *   M_ab = int phi_a phi_b,   G_ai = int phi_a theta(N_i),
- *   theta_bar(u) = phi^T M^-1 G u,
- *   K_vol = lambda G^T M^-1 G,   F_vol = lambda G^T M^-1 G u.
+ *   theta_bar(u) = phi^T M^-1 G u.
  *
- * On affine cells in plane strain and 3D this is selective reduced
- * integration of the volumetric term; unlike it, the projection keeps the
- * constant-stress patch test of an axisymmetric model. The stresses written
- * and checked take their volumetric part from theta_bar, as the equilibrium
- * does (the pointwise lambda tr(eps) of a nearly incompressible body is
- * lambda times a small, oscillating error).
+ * The bulk assembler (Bulk::Assembler) gives every constitutive model the
+ * strain eps_bar = eps + (theta_bar - theta) / 3 I (Bulk::point_strain())
+ * and uses the matching operator d eps_bar / d u_i in the Jacobian
+ * (value_at(), derivatives_at()); the stresses written and checked take the
+ * same strain. Unlike selective reduced integration, the projection keeps
+ * the constant-stress patch test of an axisymmetric model.
  */
 namespace Signorini
 {
@@ -139,27 +137,25 @@ namespace Signorini
         return v;
       }
 
-      /** Adds lambda G^T theta to @p f_int and lambda G^T M^-1 G to
-       * @p matrix (if given). */
-      void
-      add_cell_terms(const double          lambda,
-                     const Vector<double> &theta,
-                     Vector<double> &      f_int,
-                     FullMatrix<double> *  matrix) const
+      /** theta_bar at point @p q of the rule, from its coefficients. */
+      double
+      value_at(const unsigned int q, const Vector<double> &theta) const
       {
-        const unsigned int n = fe.n_dofs_per_cell();
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int a = 0; a < n_basis; ++a)
-            f_int(i) += lambda * G(a, i) * theta[a];
-        if (matrix)
-          for (unsigned int i = 0; i < n; ++i)
-            for (unsigned int j = 0; j < n; ++j)
-              {
-                double k = 0;
-                for (unsigned int a = 0; a < n_basis; ++a)
-                  k += G(a, i) * M_inv_G(a, j);
-                (*matrix)(i, j) += lambda * k;
-              }
+        double v = 0;
+        for (unsigned int a = 0; a < n_basis; ++a)
+          v += theta[a] * phi(a, q);
+        return v;
+      }
+
+      /** d theta_bar / d u_i at point @p q of the rule (the B-bar
+       * operator's volumetric row), for every DoF i of the cell. */
+      void
+      derivatives_at(const unsigned int q, std::vector<double> &d) const
+      {
+        d.assign(fe.n_dofs_per_cell(), 0.);
+        for (unsigned int a = 0; a < n_basis; ++a)
+          for (unsigned int i = 0; i < d.size(); ++i)
+            d[i] += phi(a, q) * M_inv_G(a, i);
       }
 
     private:

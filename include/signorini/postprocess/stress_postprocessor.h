@@ -7,7 +7,7 @@
 
 #include <deal.II/numerics/data_postprocessor.h>
 
-#include <signorini/material/elastic_material.h>
+#include <signorini/bulk/assembler.h>
 #include <signorini/material/projected_volumetric_strain.h>
 
 #include <map>
@@ -15,9 +15,9 @@
 /**
  * Cauchy stress components [Pa] and the von Mises stress for DataOut, from
  * the displacement gradient and the material of each cell (by material id).
- * In 2D (plane strain) stress_zz is written too. With the projected
- * volumetric strain (B-bar) the volumetric part is lambda theta_bar
- * (Material::ProjectedVolumetricStrain), as in the equilibrium.
+ * In 2D the stress normal to the plane is written too (stress_zz, or
+ * stress_hoop axisymmetric). The strain is that of the equilibrium
+ * (Bulk::point_strain(): with B-bar its volumetric part is theta_bar).
  */
 namespace Signorini
 {
@@ -34,8 +34,7 @@ namespace Signorini
        * @p solution that DataOut writes): the volumetric strain projected
        * per cell (B-bar). */
       StressPostprocessor(
-        const std::map<types::material_id, Material::ElasticMaterial<dim>>
-          &                                  materials,
+        const Bulk::Materials<dim> &         materials,
         const bool                           axisymmetric = false,
         const FiniteElement<dim> *           projected    = nullptr,
         const TrilinosWrappers::MPI::Vector *solution     = nullptr)
@@ -83,7 +82,7 @@ namespace Signorini
         std::vector<Vector<double>> &computed) const override
       {
         const auto  cell = inputs.template get_cell<dim>();
-        const auto &material = materials.at(cell->material_id());
+        const auto &material = *materials.at(cell->material_id());
         std::vector<double> volumetric(computed.size());
         if (projected)
           {
@@ -121,26 +120,26 @@ namespace Signorini
             const double hoop = !axisymmetric ? 0. :
                                 r > 0 ? inputs.solution_values[q][0] / r :
                                         inputs.solution_gradients[q][0][0];
-            const SymmetricTensor<2, dim> stress =
-              projected ?
-                material.stress_from_volumetric(strain, volumetric[q]) :
-                material.stress(strain, hoop);
+            SymmetricTensor<2, 3> stress;
+            material.evaluate(Bulk::point_strain<dim>(strain,
+                                                      hoop,
+                                                      projected ?
+                                                        &volumetric[q] :
+                                                        nullptr),
+                              stress,
+                              nullptr);
             unsigned int k = 0;
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = i; j < dim; ++j)
                 computed[q][k++] = stress[i][j];
             if (dim == 2)
-              computed[q][k++] =
-                projected ?
-                  material.stress_33_from_volumetric(hoop, volumetric[q]) :
-                  material.stress_33(strain, hoop);
-            computed[q][k] = material.von_mises(strain, hoop);
+              computed[q][k++] = stress[2][2];
+            computed[q][k] = Material::von_mises(stress);
           }
       }
 
     private:
-      const std::map<types::material_id, Material::ElasticMaterial<dim>>
-        &                                  materials;
+      const Bulk::Materials<dim> &         materials;
       const bool                           axisymmetric;
       const FiniteElement<dim> *           projected;
       const TrilinosWrappers::MPI::Vector *solution;

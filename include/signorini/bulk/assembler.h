@@ -1,0 +1,103 @@
+#ifndef signorini_bulk_assembler_h
+#define signorini_bulk_assembler_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <signorini/core/parameters.h>
+#include <signorini/material/interface.h>
+
+#include <map>
+#include <memory>
+#include <vector>
+
+/**
+ * The bulk part of the residual and its Jacobian: internal force from the
+ * stress of each cell's constitutive model (Material::Interface), external
+ * force from the body force and the Neumann conditions, for plane strain,
+ * axisymmetric (x = r: the hoop strain u_r / r and the weight 2 pi r) and 3D
+ * models.
+ *
+ * Kinematics (small strain): eps = sym grad u, as a 3D tensor whose
+ * component (2, 2) is the strain normal to the plane in 2D (0 in plane
+ * strain, u_r / r axisymmetric). With 'Finite element/Volumetric strain =
+ * projected' (B-bar) the volumetric part of eps is replaced by the cell's
+ * projected volumetric strain theta_bar (Material::ProjectedVolumetricStrain):
+ *   eps_bar = eps + (theta_bar - tr eps) / 3 I,
+ * for every model alike; the Jacobian uses the matching B-bar operator.
+ */
+namespace Signorini
+{
+  namespace Bulk
+  {
+    using namespace dealii;
+
+    template <int dim>
+    using Materials =
+      std::map<types::material_id, std::unique_ptr<Material::Interface<dim>>>;
+
+    /** The 3D strain of a point from the in-plane strain @p strain and the
+     * strain normal to the plane @p strain_33 (2D), with its volumetric part
+     * replaced by @p theta_bar if given (B-bar). */
+    template <int dim>
+    SymmetricTensor<2, 3>
+    point_strain(const SymmetricTensor<2, dim> &strain,
+                 const double                   strain_33,
+                 const double *                 theta_bar = nullptr)
+    {
+      SymmetricTensor<2, 3> e = Material::to_3d<dim>(strain, strain_33);
+      if (theta_bar)
+        e += (*theta_bar - trace(e)) / 3. * unit_symmetric_tensor<3>();
+      return e;
+    }
+
+    template <int dim>
+    class Assembler
+    {
+    public:
+      /** @p neumann: one function per Neumann condition of @p parameters;
+       * @p body_force: dim components. Functions are evaluated at the time
+       * they are set to. */
+      Assembler(const Parameters &                                parameters,
+                const FESystem<dim> &                             fe,
+                const Materials<dim> &                            materials,
+                const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
+                const FunctionParser<dim> &body_force);
+
+      /**
+       * Adds F_ext - F_int of @p solution (ghosted) into @p rhs and the
+       * Jacobian into @p matrix (if not null), through @p constraints; adds
+       * F_int and F_ext into @p internal_force and @p external_force (no
+       * constraints: the reactions are their sums at the Dirichlet DoFs).
+       */
+      void
+      assemble(const DoFHandler<dim> &              dof_handler,
+               const TrilinosWrappers::MPI::Vector &solution,
+               const AffineConstraints<double> &    constraints,
+               TrilinosWrappers::SparseMatrix *     matrix,
+               TrilinosWrappers::MPI::Vector &      rhs,
+               TrilinosWrappers::MPI::Vector &      internal_force,
+               TrilinosWrappers::MPI::Vector &      external_force) const;
+
+    private:
+      /** Neumann tractions of the boundary faces of @p cell into
+       * @p cell_fext. */
+      void
+      add_neumann(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                  FEFaceValues<dim> &fe_face_values,
+                  Vector<double> &   cell_fext) const;
+
+      const Parameters &                                       parameters;
+      const FESystem<dim> &                                    fe;
+      const Materials<dim> &                                   materials;
+      const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann;
+      const FunctionParser<dim> &                              body_force;
+    };
+  } // namespace Bulk
+} // namespace Signorini
+
+#endif

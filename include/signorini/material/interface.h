@@ -1,0 +1,201 @@
+#ifndef signorini_material_interface_h
+#define signorini_material_interface_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/types.h>
+
+#include <signorini/core/parameters.h>
+#include <signorini/core/plugins.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+/**
+ * Constitutive models of the bodies (the plug-in family of subsection
+ * 'Materials/Material k', entry 'Model'), after step-42's ConstitutiveLaw:
+ * stress and tangent from the strain at a quadrature point.
+ *
+ * Every model works with 3D tensors: in 2D the component (2, 2) of the
+ * strain is the strain normal to the plane, 0 in plane strain and the hoop
+ * strain u_r / r in an axisymmetric model, and the stress normal to the
+ * plane comes back in the same component. A model is written once for
+ * plane strain, axisymmetry and 3D, and models with an inelastic strain
+ * (plasticity) keep all its components.
+ *
+ * Every solid model of this family has an elastic part: 'Young's modulus'
+ * and 'Poisson's ratio' are entries of 'Material k' itself, shared by the
+ * models; a model declares the parameters of its own in a subsection of
+ * 'Material k' named after it, capitalised (declare_parameters()), and
+ * reads them in parse_parameters().
+ *
+ * A new model: a class derived from Interface<dim> with a static
+ * declare_parameters(ParameterHandler &), registered in its source file
+ * with SIGNORINI_REGISTER_MATERIAL(Class, "name", "description")
+ * (doc/extending.md).
+ */
+namespace Signorini
+{
+  namespace Material
+  {
+    using namespace dealii;
+
+    /** The 3D strain of a point: @p strain in the plane (or in 3D) and,
+     * in 2D, @p strain_33 normal to it. */
+    template <int dim>
+    SymmetricTensor<2, 3>
+    to_3d(const SymmetricTensor<2, dim> &strain, const double strain_33 = 0.)
+    {
+      SymmetricTensor<2, 3> e;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          e[i][j] = strain[i][j];
+      if (dim == 2)
+        e[2][2] = strain_33;
+      return e;
+    }
+
+    /** The in-plane (or 3D) part of a 3D tensor. */
+    template <int dim>
+    SymmetricTensor<2, dim>
+    from_3d(const SymmetricTensor<2, 3> &t)
+    {
+      SymmetricTensor<2, dim> r;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          r[i][j] = t[i][j];
+      return r;
+    }
+
+    /** von Mises equivalent stress of a 3D stress [Pa]. */
+    inline double
+    von_mises(const SymmetricTensor<2, 3> &stress)
+    {
+      const SymmetricTensor<2, 3> s = deviator(stress);
+      return std::sqrt(1.5 * (s * s));
+    }
+
+    template <int dim>
+    class Interface
+    {
+    public:
+      virtual ~Interface() = default;
+
+      /** The elastic constants of 'Material k', set before
+       * parse_parameters(). */
+      void
+      set_elastic_constants(const double youngs_modulus,
+                            const double poissons_ratio)
+      {
+        E      = youngs_modulus;
+        nu     = poissons_ratio;
+        lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+        mu     = E / (2 * (1 + nu));
+      }
+
+      /** Reads the model's own parameters; @p prm is in subsection
+       * 'Material k'. Default: the model has none. */
+      virtual void
+      parse_parameters(ParameterHandler &prm)
+      {
+        (void)prm;
+      }
+
+      /**
+       * The Cauchy stress at a point for the 3D small strain @p strain
+       * [Pa], and if @p tangent is given its derivative d sigma / d eps.
+       */
+      virtual void
+      evaluate(const SymmetricTensor<2, 3> &strain,
+               SymmetricTensor<2, 3> &      stress,
+               SymmetricTensor<4, 3> *      tangent) const = 0;
+
+      /** True if the stress is a linear function of the strain without
+       * history: Newton's step at fixed contact statuses is then exact. */
+      virtual bool
+      is_linear() const = 0;
+
+      /** A stiffness for scaling the contact coefficients (rho_n = c_n
+       * E / h) and the error indicator [Pa]. Default: Young's modulus. */
+      virtual double
+      representative_modulus() const
+      {
+        return E;
+      }
+
+      /**
+       * History of the quadrature points (inelastic models): commit() when
+       * a load step has converged, roll_back() when it is cut (back to the
+       * last committed state). A model without history does nothing.
+       */
+      virtual void
+      commit()
+      {}
+      virtual void
+      roll_back()
+      {}
+
+      double
+      youngs_modulus() const
+      {
+        return E;
+      }
+      double
+      poissons_ratio() const
+      {
+        return nu;
+      }
+      /** Lame's first parameter and the shear modulus [Pa]. */
+      double
+      lame_lambda() const
+      {
+        return lambda;
+      }
+      double
+      shear_modulus() const
+      {
+        return mu;
+      }
+
+    protected:
+      double E = 0, nu = 0, lambda = 0, mu = 0;
+    };
+
+    /** The registry of the family (dim 2 and 3 share the names). */
+    template <int dim>
+    using Registry = Plugins::Registry<Interface<dim>>;
+
+    /** Materials by material id, built from subsection 'Materials': each
+     * 'Material k' gives its model, elastic constants and own parameters.
+     * Throws InputError for an unknown model. */
+    template <int dim>
+    std::map<types::material_id, std::unique_ptr<Interface<dim>>>
+    make_materials(const Parameters &parameters, ParameterHandler &prm);
+
+    /** Declares 'Model' and the models' own parameters in the current
+     * subsection ('Material k'). */
+    void
+    declare_model_parameters(ParameterHandler &prm);
+  } // namespace Material
+} // namespace Signorini
+
+/**
+ * Registers a constitutive model for dim = 2 and 3 under @p name (the value
+ * of 'Material k/Model') with a one-line @p description. Use once, in the
+ * model's source file, at namespace scope.
+ */
+#define SIGNORINI_REGISTER_MATERIAL(classname, name, description)       \
+  namespace                                                             \
+  {                                                                     \
+    const ::Signorini::Plugins::Registration<                           \
+      ::Signorini::Material::Interface<2>,                              \
+      classname<2>>                                                     \
+      SIGNORINI_PLUGIN_NAME(signorini_material_2_)(name, description);  \
+    const ::Signorini::Plugins::Registration<                           \
+      ::Signorini::Material::Interface<3>,                              \
+      classname<3>>                                                     \
+      SIGNORINI_PLUGIN_NAME(signorini_material_3_)(name, description);  \
+  }
+
+#endif

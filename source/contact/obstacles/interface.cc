@@ -1,0 +1,150 @@
+#include <deal.II/base/utilities.h>
+
+#include <signorini/contact/obstacles/interface.h>
+
+namespace Signorini
+{
+  namespace Obstacles
+  {
+    template <int dim>
+    void
+    Interface<dim>::set_length_scale(const double)
+    {
+    }
+
+
+    template <int dim>
+    bool
+    Interface<dim>::flat() const
+    {
+      return false;
+    }
+
+
+    template <int dim>
+    std::string
+    Interface<dim>::approximate_derivatives() const
+    {
+      return "";
+    }
+
+
+    template <int dim>
+    void
+    Interface<dim>::set_translation(const Tensor<1, dim> &t)
+    {
+      translation = t;
+    }
+
+
+    template <int dim>
+    const Tensor<1, dim> &
+    Interface<dim>::get_translation() const
+    {
+      return translation;
+    }
+
+
+    template <int dim>
+    Projection<dim>
+    Interface<dim>::project(const Point<dim> &p) const
+    {
+      Projection<dim> r = project_reference(p - translation);
+      r.x_m += translation;
+      return r;
+    }
+
+
+    void
+    declare_master_parameters(ParameterHandler &prm)
+    {
+      const auto &registry = Registry<2>::instance();
+      prm.declare_entry("Master",
+                        "body",
+                        Patterns::Selection("body|" + registry.selection()),
+                        "Master surface: 'body' (the faces 'Master boundary "
+                        "id' of another meshed body) or a rigid obstacle: " +
+                          registry.documentation() +
+                          ". An obstacle reads its parameters from the "
+                          "subsection named after it, capitalised.");
+      registry.declare_parameters(prm);
+    }
+
+
+    template <int dim>
+    std::vector<std::unique_ptr<Interface<dim>>>
+    make_obstacles(const Parameters &parameters, ParameterHandler &prm)
+    {
+      std::vector<std::unique_ptr<Interface<dim>>> result;
+      const auto &pairs = parameters.contact.pairs;
+      prm.enter_subsection("Contact");
+      for (unsigned int k = 0; k < pairs.size(); ++k)
+      {
+        result.emplace_back();
+        if (pairs[k].master_is_body())
+          continue;
+        const std::string where =
+          "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
+        result.back() =
+          Registry<dim>::instance().create(pairs[k].master,
+                                           where + ", parameter 'Master'");
+        prm.enter_subsection("Pair " + std::to_string(k + 1));
+        try
+        {
+          result.back()->parse_parameters(prm);
+        }
+        catch (const InputError &e)
+        {
+          prm.leave_subsection();
+          prm.leave_subsection();
+          throw InputError(where + ", " + e.what());
+        }
+        prm.leave_subsection();
+      }
+      prm.leave_subsection();
+      return result;
+    }
+
+
+    template <int dim>
+    Point<dim>
+    parse_point(const ParameterHandler &prm, const std::string &entry)
+    {
+      const auto values = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get(entry), ','));
+      if (values.size() < dim)
+        throw InputError("parameter '" + entry + "': give " +
+                         std::to_string(dim) + " coordinates.");
+      Point<dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = values[d];
+      return p;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    parse_direction(const ParameterHandler &prm, const std::string &entry)
+    {
+      const Tensor<1, dim> v = parse_point<dim>(prm, entry);
+      if (v.norm() == 0.)
+        throw InputError("parameter '" + entry + "': give " +
+                         std::to_string(dim) +
+                         " coordinates of a nonzero vector.");
+      return v / v.norm();
+    }
+
+
+#define SIGNORINI_INSTANTIATE(dim)                                           \
+  template class Interface<dim>;                                             \
+  template std::vector<std::unique_ptr<Interface<dim>>> make_obstacles<dim>( \
+    const Parameters &, ParameterHandler &);                                 \
+  template Point<dim>     parse_point<dim>(const ParameterHandler &,         \
+                                       const std::string &);             \
+  template Tensor<1, dim> parse_direction<dim>(const ParameterHandler &,     \
+                                               const std::string &);
+    SIGNORINI_INSTANTIATE(2)
+    SIGNORINI_INSTANTIATE(3)
+#undef SIGNORINI_INSTANTIATE
+  } // namespace Obstacles
+} // namespace Signorini

@@ -1,0 +1,54 @@
+#include <signorini/material/interface.h>
+
+namespace Signorini
+{
+  namespace Material
+  {
+    void
+    declare_model_parameters(ParameterHandler &prm)
+    {
+      const auto &registry = Registry<2>::instance();
+      prm.declare_entry("Model",
+                        "linear elastic",
+                        Patterns::Selection(registry.selection()),
+                        "Constitutive model of the cells with this material "
+                        "id: " +
+                          registry.documentation() +
+                          ". Every model takes 'Young's modulus' and "
+                          "'Poisson's ratio' from this subsection and its "
+                          "own parameters from a subsection named after "
+                          "it, capitalised.");
+      registry.declare_parameters(prm);
+    }
+
+
+    template <int dim>
+    std::map<types::material_id, std::unique_ptr<Interface<dim>>>
+    make_materials(const Parameters &parameters, ParameterHandler &prm)
+    {
+      std::map<types::material_id, std::unique_ptr<Interface<dim>>> result;
+      prm.enter_subsection("Materials");
+      for (unsigned int k = 0; k < parameters.materials.size(); ++k)
+        {
+          const auto &      m     = parameters.materials[k];
+          const std::string where = "subsection 'Materials/Material " +
+                                    std::to_string(k + 1) +
+                                    "', parameter 'Model'";
+          auto model = Registry<dim>::instance().create(m.model, where);
+          model->set_elastic_constants(m.youngs_modulus, m.poissons_ratio);
+          prm.enter_subsection("Material " + std::to_string(k + 1));
+          model->parse_parameters(prm);
+          prm.leave_subsection();
+          result.emplace(m.material_id, std::move(model));
+        }
+      prm.leave_subsection();
+      return result;
+    }
+
+
+    template std::map<types::material_id, std::unique_ptr<Interface<2>>>
+    make_materials<2>(const Parameters &, ParameterHandler &);
+    template std::map<types::material_id, std::unique_ptr<Interface<3>>>
+    make_materials<3>(const Parameters &, ParameterHandler &);
+  } // namespace Material
+} // namespace Signorini
