@@ -92,36 +92,36 @@ namespace Example
       const auto           I = unit_symmetric_tensor<dim>();
       Projection<dim>      result;
       if (r == 0.)
-      {
-        result.normal   = axis;
-        result.gap      = z;
-        result.x_m      = p - z * axis;
-        result.dclosest = I - outer_product(axis, axis);
-        return result;
-      }
+        {
+          result.normal   = axis;
+          result.gap      = z;
+          result.x_m      = p - z * axis;
+          result.dclosest = I - outer_product(axis, axis);
+          return result;
+        }
       const Tensor<1, dim> u  = radial / r;
       const Tensor<1, dim> nu = c * u - s * axis;
       if (w * (s * u + c * axis) >= 0.)
-      {
-        // dnu/dp = c (I - e e - u u) / r; grad phi = nu.
-        const double         phi = w * nu;
-        const Tensor<2, dim> dnu =
-          c / r * (I - outer_product(axis, axis) - outer_product(u, u));
-        result.normal   = -nu;
-        result.gap      = -phi;
-        result.x_m      = p - phi * nu;
-        result.dnormal  = -dnu;
-        result.dclosest = I - outer_product(nu, nu) - phi * dnu;
-      }
+        {
+          // dnu/dp = c (I - e e - u u) / r; grad phi = nu.
+          const double         phi = w * nu;
+          const Tensor<2, dim> dnu =
+            c / r * (I - outer_product(axis, axis) - outer_product(u, u));
+          result.normal   = -nu;
+          result.gap      = -phi;
+          result.x_m      = p - phi * nu;
+          result.dnormal  = -dnu;
+          result.dclosest = I - outer_product(nu, nu) - phi * dnu;
+        }
       else
-      {
-        const double distance = w.norm();
-        result.normal         = -w / distance;
-        result.gap            = -distance;
-        result.x_m            = apex;
-        result.dnormal =
-          -(I - outer_product(result.normal, result.normal)) / distance;
-      }
+        {
+          const double distance = w.norm();
+          result.normal         = -w / distance;
+          result.gap            = -distance;
+          result.x_m            = apex;
+          result.dnormal =
+            -(I - outer_product(result.normal, result.normal)) / distance;
+        }
       return result;
     }
 

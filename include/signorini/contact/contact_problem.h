@@ -49,6 +49,16 @@
  * rho_t (Lambda rows) of their pair, so that the residual of the active rows
  * is a force like the displacement residual; Newton's iterates do not depend
  * on this scaling.
+ *
+ * The members are defined by concern in source/contact/:
+ *   contact_problem.cc      construction, coefficients, point data, couplings
+ *   surfaces.cc             setup: faces, multiplier numbering, exclusions,
+ *                           constraint lines
+ *   pairing.cc              search, projection, mortar segmentation
+ *   statuses.cc             statuses per node, initial multipliers
+ *   active_set_history.cc   anti-cycling, freezes, releases, extrapolation
+ *   assembly.cc             the contact residual and Jacobian
+ *   output.cc               summaries, point records, CSV, fields, transfer
  */
 namespace Signorini
 {

@@ -13,11 +13,11 @@ namespace Signorini
     {
       AssertThrow(radius > 0., ExcMessage("Cylinder: radius must be > 0"));
       if (dim == 3)
-      {
-        AssertThrow(axis_direction.norm() > 0.,
-                    ExcMessage("Cylinder: zero axis direction"));
-        this->axis_direction = axis_direction / axis_direction.norm();
-      }
+        {
+          AssertThrow(axis_direction.norm() > 0.,
+                      ExcMessage("Cylinder: zero axis direction"));
+          this->axis_direction = axis_direction / axis_direction.norm();
+        }
     }
 
 
@@ -50,16 +50,16 @@ namespace Signorini
     {
       prm.enter_subsection("Cylinder");
       try
-      {
-        axis_point = parse_point<dim>(prm, "Axis point");
-        if (dim == 3)
-          axis_direction = parse_direction<dim>(prm, "Axis direction");
-      }
+        {
+          axis_point = parse_point<dim>(prm, "Axis point");
+          if (dim == 3)
+            axis_direction = parse_direction<dim>(prm, "Axis direction");
+        }
       catch (const InputError &e)
-      {
-        prm.leave_subsection();
-        throw InputError(std::string("subsection 'Cylinder', ") + e.what());
-      }
+        {
+          prm.leave_subsection();
+          throw InputError(std::string("subsection 'Cylinder', ") + e.what());
+        }
       radius = prm.get_double("Radius");
       prm.leave_subsection();
     }
@@ -81,28 +81,28 @@ namespace Signorini
       else
         // the first coordinate direction not parallel to the axis
         for (unsigned int i = 0; i < dim; ++i)
-        {
-          const Tensor<1, dim> t = across_axis[i];
-          if (t.norm() > 1e-3)
           {
-            e = t / t.norm();
-            break;
+            const Tensor<1, dim> t = across_axis[i];
+            if (t.norm() > 1e-3)
+              {
+                e = t / t.norm();
+                break;
+              }
           }
-        }
       Projection<dim> r;
       r.x_m    = p + (radius - dist) * e;
       r.normal = -e;
       r.gap    = radius - dist;
       if (dist > 0.)
-      {
-        // dn/dp = -(P_a - e e)/dist, dx^m/dp = I - e e + (R/dist - 1)
-        // (P_a - e e), P_a = I - a a (a = 0 in 2D).
-        const Tensor<2, dim> circumferential =
-          across_axis - outer_product(e, e);
-        r.dnormal  = -circumferential / dist;
-        r.dclosest = unit_symmetric_tensor<dim>() - outer_product(e, e) +
-                     (radius / dist - 1.) * circumferential;
-      }
+        {
+          // dn/dp = -(P_a - e e)/dist, dx^m/dp = I - e e + (R/dist - 1)
+          // (P_a - e e), P_a = I - a a (a = 0 in 2D).
+          const Tensor<2, dim> circumferential =
+            across_axis - outer_product(e, e);
+          r.dnormal  = -circumferential / dist;
+          r.dclosest = unit_symmetric_tensor<dim>() - outer_product(e, e) +
+                       (radius / dist - 1.) * circumferential;
+        }
       return r;
     }
 

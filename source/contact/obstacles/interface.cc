@@ -79,28 +79,28 @@ namespace Signorini
       const auto &pairs = parameters.contact.pairs;
       prm.enter_subsection("Contact");
       for (unsigned int k = 0; k < pairs.size(); ++k)
-      {
-        result.emplace_back();
-        if (pairs[k].master_is_body())
-          continue;
-        const std::string where =
-          "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
-        result.back() =
-          Registry<dim>::instance().create(pairs[k].master,
-                                           where + ", parameter 'Master'");
-        prm.enter_subsection("Pair " + std::to_string(k + 1));
-        try
         {
-          result.back()->parse_parameters(prm);
-        }
-        catch (const InputError &e)
-        {
+          result.emplace_back();
+          if (pairs[k].master_is_body())
+            continue;
+          const std::string where =
+            "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
+          result.back() =
+            Registry<dim>::instance().create(pairs[k].master,
+                                             where + ", parameter 'Master'");
+          prm.enter_subsection("Pair " + std::to_string(k + 1));
+          try
+            {
+              result.back()->parse_parameters(prm);
+            }
+          catch (const InputError &e)
+            {
+              prm.leave_subsection();
+              prm.leave_subsection();
+              throw InputError(where + ", " + e.what());
+            }
           prm.leave_subsection();
-          prm.leave_subsection();
-          throw InputError(where + ", " + e.what());
         }
-        prm.leave_subsection();
-      }
       prm.leave_subsection();
       return result;
     }

@@ -58,18 +58,18 @@ namespace Signorini
         parse_function_constants(constants, where + "'Function constants': ");
       auto function = std::make_shared<FunctionParser<dim>>(1);
       try
-      {
-        // muparser's diagnostics go to std::cerr: into the message.
-        CerrCapture capture;
-        function->initialize(dim == 2 ? "x,y" : "x,y,z", expression, values);
-        function->value(Point<dim>());
-      }
+        {
+          // muparser's diagnostics go to std::cerr: into the message.
+          CerrCapture capture;
+          function->initialize(dim == 2 ? "x,y" : "x,y,z", expression, values);
+          function->value(Point<dim>());
+        }
       catch (const ExceptionBase &)
-      {
-        throw InputError(where + "'Function': '" + expression +
-                         "' is not an expression of x, y" +
-                         (dim == 3 ? ", z" : "") + " and the constants.");
-      }
+        {
+          throw InputError(where + "'Function': '" + expression +
+                           "' is not an expression of x, y" +
+                           (dim == 3 ? ", z" : "") + " and the constants.");
+        }
       set_function(function, false, false);
     }
 
@@ -120,12 +120,12 @@ namespace Signorini
       const double   h = gradient_step * length_scale;
       Tensor<1, dim> g;
       for (unsigned int i = 0; i < dim; ++i)
-      {
-        Point<dim> plus = p, minus = p;
-        plus[i] += h;
-        minus[i] -= h;
-        g[i] = (phi->value(plus) - phi->value(minus)) / (2. * h);
-      }
+        {
+          Point<dim> plus = p, minus = p;
+          plus[i] += h;
+          minus[i] -= h;
+          g[i] = (phi->value(plus) - phi->value(minus)) / (2. * h);
+        }
       return g;
     }
 
@@ -140,21 +140,20 @@ namespace Signorini
       const double   h = hessian_step * length_scale;
       Tensor<2, dim> H;
       const auto     shifted =
-        [&](const int si, const int i, const int sj, const int j)
-      {
-        Point<dim> q = p;
-        q[i] += si * h;
-        q[j] += sj * h;
-        return phi->value(q);
-      };
+        [&](const int si, const int i, const int sj, const int j) {
+          Point<dim> q = p;
+          q[i] += si * h;
+          q[j] += sj * h;
+          return phi->value(q);
+        };
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = i; j < dim; ++j)
-        {
-          H[i][j] = (shifted(1, i, 1, j) - shifted(1, i, -1, j) -
-                     shifted(-1, i, 1, j) + shifted(-1, i, -1, j)) /
-                    (4. * h * h);
-          H[j][i] = H[i][j];
-        }
+          {
+            H[i][j] = (shifted(1, i, 1, j) - shifted(1, i, -1, j) -
+                       shifted(-1, i, 1, j) + shifted(-1, i, -1, j)) /
+                      (4. * h * h);
+            H[j][i] = H[i][j];
+          }
       return H;
     }
 
@@ -167,13 +166,13 @@ namespace Signorini
       const double         grad_norm = grad.norm();
       Projection<dim>      r;
       if (!(grad_norm > 0.) || !std::isfinite(grad_norm))
-      {
-        // No direction: a point where phi is flat cannot be projected.
-        r.x_m       = p;
-        r.normal[0] = 1.;
-        r.gap       = -1e30; // as a point with no master in reach
-        return r;
-      }
+        {
+          // No direction: a point where phi is flat cannot be projected.
+          r.x_m       = p;
+          r.normal[0] = 1.;
+          r.gap       = -1e30; // as a point with no master in reach
+          return r;
+        }
       const Tensor<2, dim> H = hessian(p);
       r.normal               = -grad / grad_norm;
       r.gap                  = -phi->value(p) / grad_norm;

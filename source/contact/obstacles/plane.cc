@@ -37,15 +37,15 @@ namespace Signorini
     {
       prm.enter_subsection("Plane");
       try
-      {
-        point          = parse_point<dim>(prm, "Point");
-        outward_normal = parse_direction<dim>(prm, "Outward normal");
-      }
+        {
+          point          = parse_point<dim>(prm, "Point");
+          outward_normal = parse_direction<dim>(prm, "Outward normal");
+        }
       catch (const InputError &e)
-      {
-        prm.leave_subsection();
-        throw InputError(std::string("subsection 'Plane', ") + e.what());
-      }
+        {
+          prm.leave_subsection();
+          throw InputError(std::string("subsection 'Plane', ") + e.what());
+        }
       prm.leave_subsection();
     }
 

@@ -36,14 +36,14 @@ namespace Signorini
     {
       prm.enter_subsection("Sphere");
       try
-      {
-        center = parse_point<dim>(prm, "Centre");
-      }
+        {
+          center = parse_point<dim>(prm, "Centre");
+        }
       catch (const InputError &e)
-      {
-        prm.leave_subsection();
-        throw InputError(std::string("subsection 'Sphere', ") + e.what());
-      }
+        {
+          prm.leave_subsection();
+          throw InputError(std::string("subsection 'Sphere', ") + e.what());
+        }
       radius = prm.get_double("Radius");
       prm.leave_subsection();
     }
@@ -65,13 +65,13 @@ namespace Signorini
       r.normal = -e;
       r.gap    = radius - dist;
       if (dist > 0.)
-      {
-        // dn/dp = -(I - e e)/|p - c|, dx^m/dp = R (I - e e)/|p - c|.
-        const Tensor<2, dim> tangential =
-          unit_symmetric_tensor<dim>() - outer_product(e, e);
-        r.dnormal  = -tangential / dist;
-        r.dclosest = radius / dist * tangential;
-      }
+        {
+          // dn/dp = -(I - e e)/|p - c|, dx^m/dp = R (I - e e)/|p - c|.
+          const Tensor<2, dim> tangential =
+            unit_symmetric_tensor<dim>() - outer_product(e, e);
+          r.dnormal  = -tangential / dist;
+          r.dclosest = radius / dist * tangential;
+        }
       return r;
     }
 

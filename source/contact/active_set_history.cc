@@ -1,0 +1,361 @@
+// Active-set history across Newton and geometric iterations: anti-cycling
+// freezes, releases, release extrapolation.
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <signorini/contact/contact_problem.h>
+#include <signorini/contact/distributed_vectors.h>
+#include <signorini/contact/segmentation.h>
+#include <signorini/postprocess/output_files.h>
+
+#include "helpers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <set>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using internal::add_entry;
+    using internal::faces_meeting;
+    using internal::offset_of;
+    using internal::pair_name;
+    using internal::writable_vector;
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::start_newton_solve()
+    {
+      iterates_recorded = 0;
+      node_cycle.clear();
+      for (auto &[dof, nf] : node_friction)
+        nf.frozen = false;
+      node_release.clear();
+      node_extrapolated.clear();
+      node_kept.clear();
+      for (auto &point : points)
+        {
+          point.release          = false;
+          point.extrapolated     = false;
+          point.keep_closed      = false;
+          point.status_before    = point.status;
+          point.direction_before = point.slip_direction;
+          point.cycles           = 0;
+          point.changes          = 0;
+          point.refrozen         = false;
+          // A status frozen by the geometric loop stays for the step.
+          point.was_frozen = point.geometric_freeze;
+          if (!point.geometric_freeze)
+            clear_freeze(point);
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::start_geometric_loop()
+    {
+      for (auto &point : points)
+        {
+          point.geo_status_1     = point.status;
+          point.geo_status_2     = point.status;
+          point.geo_direction_1  = point.slip_direction;
+          point.geo_direction_2  = point.slip_direction;
+          point.geometric_freeze = false;
+          point.geo_face_1       = -1;
+          point.geo_face_2       = -1;
+          point.pinned_face      = -1;
+          clear_freeze(point);
+        }
+      pairings_in_step = 0;
+      n_newly_pinned   = 0;
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::end_geometric_iteration(const unsigned int g)
+    {
+      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
+      unsigned int       n            = 0;
+      for (auto &point : points)
+        {
+          const PointStatus status = point.status;
+          const auto       &dir    = point.slip_direction;
+          // Same status as two pairings before (a slip in a direction not
+          // turned against it), different from the last one (or reversed).
+          const bool same_as_2 =
+            status == point.geo_status_2 &&
+            (status != PointStatus::slip || dir * point.geo_direction_2 >= 0);
+          const bool differs_from_1 =
+            status != point.geo_status_1 ||
+            (status == PointStatus::slip && dir * point.geo_direction_1 < 0);
+          if (freeze_after > 0 && g >= 3 && !point.geometric_freeze &&
+              same_as_2 && differs_from_1)
+            {
+              ++n;
+              point.geometric_freeze = true;
+              point.was_frozen       = true;
+              freeze_for_cycle(point,
+                               status,
+                               dir,
+                               point.geo_status_1,
+                               point.geo_direction_1,
+                               true);
+            }
+          point.geo_status_2    = point.geo_status_1;
+          point.geo_direction_2 = point.geo_direction_1;
+          point.geo_status_1    = status;
+          point.geo_direction_1 = dir;
+        }
+      return Utilities::MPI::sum(n, comm);
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::release_frozen(unsigned int &refrozen)
+    {
+      unsigned int n = 0, again = 0;
+      for (auto &point : points)
+        if (point.freeze_contact && !point.geometric_freeze)
+          {
+            // The first contradiction of a frozen point whose friction is
+            // active: frozen once more, in the stick or slip status the
+            // plain law asks for (released, it would enter its stick/slip
+            // or reversal cycle again). Otherwise released.
+            if (!point.refrozen && point.plain_violated &&
+                point.plain_status != PointStatus::free &&
+                point.friction_active)
+              {
+                ++again;
+                point.refrozen     = true;
+                point.freeze_stick = point.plain_status == PointStatus::stick;
+                point.frozen_slip_direction =
+                  point.plain_status == PointStatus::slip ?
+                    point.plain_direction :
+                    Tensor<1, dim>();
+              }
+            else
+              {
+                ++n;
+                clear_freeze(point);
+              }
+          }
+      // Nodes (friction status per node): the same rule.
+      for (auto &[dof, c] : node_cycle)
+        if (c.freeze && c.plain_violated)
+          {
+            const bool owned = owned_multipliers.is_element(dof);
+            if (!c.refrozen && c.plain.active)
+              {
+                again += owned;
+                c.refrozen     = true;
+                c.freeze_stick = c.plain.stick;
+                if (!c.plain.stick && c.plain.H.norm() > 0)
+                  c.q = c.plain.H / c.plain.H.norm();
+              }
+            else
+              {
+                n += owned;
+                c.freeze = false;
+              }
+          }
+      refrozen = Utilities::MPI::sum(again, comm);
+      return Utilities::MPI::sum(n, comm);
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::extrapolate_releases()
+    {
+      if (!parameters.contact.release_extrapolation)
+        return 0;
+      const unsigned int n_pairs = parameters.contact.pairs.size();
+      // The status carriers of every pair (points; multiplier nodes on
+      // node-status pairs) by class at this iterate: tension (closed in
+      // the last solve, open now), compression (closed both), open (both),
+      // entered (open in the last solve, closed now).
+      enum : int
+      {
+        tension = 0,
+        compression,
+        open,
+        entered
+      };
+      const auto class_of = [](const bool before, const bool now) {
+        return before ? (now ? compression : tension) : (now ? entered : open);
+      };
+      struct Carrier
+      {
+        Point<dim>              x;
+        int                     kind;
+        int                     point; // index into points, or -1 (node)
+        types::global_dof_index dof;
+        bool                    kept; // closed again after such a release
+      };
+      std::vector<std::vector<Carrier>> carriers(n_pairs);
+      for (unsigned int i = 0; i < points.size(); ++i)
+        {
+          auto              &point = points[i];
+          const unsigned int p     = slave_faces[point.face].pair;
+          const bool         now   = point.status != PointStatus::free;
+          // Released early and closed again: not released early again in
+          // this Newton solve.
+          if (point.extrapolated && now)
+            point.keep_closed = true;
+          point.extrapolated = false;
+          if (!node_status_pair[p])
+            carriers[p].push_back(
+              {point.x_ref,
+               class_of(point.status_before != PointStatus::free, now),
+               static_cast<int>(i),
+               0,
+               point.keep_closed || point.freeze_contact});
+        }
+      std::set<types::global_dof_index> seen;
+      for (const auto &face : slave_faces)
+        if (node_status_pair[face.pair])
+          for (unsigned int k = 0; k < face.X.size(); ++k)
+            {
+              const auto dof = face.lambda_dofs[face.k_node[k]];
+              if (!seen.insert(dof).second)
+                continue;
+              const bool now = node_active.at(dof);
+              if (node_extrapolated.count(dof) && now)
+                node_kept.insert(dof);
+              const auto before = node_active_solved.find(dof);
+              carriers[face.pair].push_back(
+                {face.X[k],
+                 class_of(before != node_active_solved.end() && before->second,
+                          now),
+                 -1,
+                 dof,
+                 node_kept.count(dof) > 0});
+            }
+      node_extrapolated.clear();
+
+      unsigned int n_released = 0;
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        {
+          // Frictionless pairs only: with friction the tension band does
+          // not follow the halving (SSNV128 in one step: 9 -> 11 Newton).
+          if (law_parameters(p).mu > 0)
+            continue;
+          // All carriers of the pair, from all ranks (coordinates and
+          // class).
+          std::vector<double> pack;
+          for (const auto &c : carriers[p])
+            {
+              for (unsigned int d = 0; d < dim; ++d)
+                pack.push_back(c.x[d]);
+              pack.push_back(c.kind);
+            }
+          std::vector<std::pair<Point<dim>, unsigned int>> all, band;
+          std::vector<int>                                 kind;
+          for (const auto &part : Utilities::MPI::all_gather(comm, pack))
+            for (unsigned int i = 0; i + dim < part.size(); i += dim + 1)
+              {
+                Point<dim> x;
+                for (unsigned int d = 0; d < dim; ++d)
+                  x[d] = part[i + d];
+                const int k = static_cast<int>(part[i + dim]);
+                if (k == tension)
+                  band.emplace_back(x, band.size());
+                all.emplace_back(x, all.size());
+                kind.push_back(k);
+              }
+          // Only while the zone shrinks: none entered, some in tension.
+          if (band.empty() ||
+              std::find(kind.begin(), kind.end(), int(entered)) != kind.end())
+            continue;
+          const auto band_tree = pack_rtree(band);
+          const auto all_tree  = pack_rtree(all);
+          // Candidates: carriers in compression whose mirror image across
+          // their nearest tension carrier lies in the band (the carrier
+          // nearest to the image is in tension), with their distance to it.
+          std::vector<std::pair<const Carrier *, double>> candidates;
+          for (const auto &c : carriers[p])
+            {
+              if (c.kind != compression || c.kept)
+                continue;
+              std::vector<std::pair<Point<dim>, unsigned int>> hit;
+              band_tree.query(boost::geometry::index::nearest(c.x, 1),
+                              std::back_inserter(hit));
+              const Point<dim> image    = c.x + 2. * (hit[0].first - c.x);
+              const double     distance = c.x.distance(hit[0].first);
+              hit.clear();
+              all_tree.query(boost::geometry::index::nearest(image, 1),
+                             std::back_inserter(hit));
+              if (kind[hit[0].second] == tension)
+                candidates.emplace_back(&c, distance);
+            }
+          // At most as many as the band holds, and at most half of those in
+          // compression, the nearest to the band first: on a graded mesh a
+          // band of a few long elements mirrors onto the whole zone, and
+          // a pair left without contact would float.
+          const std::size_t n_band = band.size();
+          const std::size_t n_compression =
+            std::count(kind.begin(), kind.end(), int(compression));
+          const std::size_t   cap = std::min(n_band, n_compression / 2);
+          std::vector<double> mine_d;
+          for (const auto &c : candidates)
+            mine_d.push_back(c.second);
+          std::vector<double> distances;
+          for (const auto &part : Utilities::MPI::all_gather(comm, mine_d))
+            distances.insert(distances.end(), part.begin(), part.end());
+          if (cap == 0 || distances.empty())
+            continue;
+          std::sort(distances.begin(), distances.end());
+          const double limit = distances[std::min(cap, distances.size()) - 1];
+          for (const auto &candidate : candidates)
+            {
+              if (candidate.second > limit)
+                continue;
+              const Carrier &c = *candidate.first;
+              if (c.point >= 0)
+                {
+                  points[c.point].release      = true;
+                  points[c.point].extrapolated = true;
+                  ++n_released;
+                }
+              else
+                {
+                  node_release.insert(c.dof);
+                  node_extrapolated.insert(c.dof);
+                  n_released += owned_multipliers.is_element(c.dof);
+                }
+            }
+        }
+      return Utilities::MPI::sum(n_released, comm);
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::clear_releases()
+    {
+      for (auto &point : points)
+        point.release = false;
+      node_release.clear();
+    }
+
+
+
+    template class ContactProblem<2>;
+    template class ContactProblem<3>;
+  } // namespace Contact
+} // namespace Signorini

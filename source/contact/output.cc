@@ -1,0 +1,419 @@
+// Contact output: pair summaries, gathered point records, CSV, nodal fields,
+// transfer of multipliers across refinement.
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <signorini/contact/contact_problem.h>
+#include <signorini/contact/distributed_vectors.h>
+#include <signorini/contact/segmentation.h>
+#include <signorini/postprocess/output_files.h>
+
+#include "helpers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <set>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using internal::add_entry;
+    using internal::faces_meeting;
+    using internal::offset_of;
+    using internal::pair_name;
+    using internal::writable_vector;
+
+
+    template <int dim>
+    std::vector<typename ContactProblem<dim>::PairSummary>
+    ContactProblem<dim>::summary() const
+    {
+      std::vector<PairSummary> result(parameters.contact.pairs.size());
+      // Node-status pairs: the normal and tangential forces in the contact
+      // frames are summed per multiplier node (the force F_l = sum w psi_l f
+      // that node l carries, against the psi-weighted normal): with dual
+      // multipliers the traction at single points oscillates, its nodal
+      // forces do not.
+      std::vector<TrilinosWrappers::MPI::Vector> nodal;
+      if (any_node_status)
+        for (unsigned int c = 0; c < 2 * dim; ++c)
+          nodal.push_back(
+            writable_vector(owned_multipliers, multiplier_ghosts, comm));
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          auto       &r    = result[face.pair];
+          r.force += point.weight * point.force;
+          if (node_status_pair[face.pair])
+            {
+              for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    const double w = point.weight * point.psi[l];
+                    add_entry(nodal[c],
+                              face.lambda_dofs[l],
+                              w * point.force[c]);
+                    add_entry(nodal[dim + c],
+                              face.lambda_dofs[l],
+                              w * point.normal[c]);
+                  }
+            }
+          else if (point.status != PointStatus::free)
+            {
+              const double f_n = point.force * point.normal;
+              r.normal_force_local += point.weight * std::abs(f_n);
+              r.tangential_force_local +=
+                point.weight * (point.force - f_n * point.normal).norm();
+            }
+          r.p_max = std::max(r.p_max, -point.lambda);
+          if (point.paired)
+            {
+              ++r.n_paired;
+              r.max_gap = std::max(r.max_gap, point.gap);
+            }
+          ++r.n_points;
+          r.n_contact += point.status != PointStatus::free;
+          // Stick and slip: points whose friction law is active (a closed
+          // point excluded from friction, or with a zero threshold, is
+          // closed without friction, as in the Newton lines).
+          r.n_stick += point.status == PointStatus::stick;
+          r.n_slip +=
+            point.status == PointStatus::slip && point.friction_active;
+        }
+      if (any_node_status)
+        {
+          for (auto &v : nodal)
+            v.compress(VectorOperation::add);
+          // Each owned node once (the owner adds it).
+          std::set<types::global_dof_index> seen;
+          for (const auto &face : slave_faces)
+            if (node_status_pair[face.pair])
+              for (const auto dof : face.lambda_dofs)
+                if (owned_multipliers.is_element(dof) &&
+                    seen.insert(dof).second)
+                  {
+                    Tensor<1, dim> F, n;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        F[c] = nodal[c][dof];
+                        n[c] = nodal[dim + c][dof];
+                      }
+                    if (n.norm() == 0)
+                      continue;
+                    n /= n.norm();
+                    auto &r = result[face.pair];
+                    r.normal_force_local += std::abs(F * n);
+                    r.tangential_force_local += (F - (F * n) * n).norm();
+                  }
+        }
+      for (unsigned int p = 0; p < result.size(); ++p)
+        if (obstacles[p])
+          {
+            result[p].rigid                 = true;
+            result[p].obstacle_displacement = obstacles[p]->get_translation();
+          }
+      for (unsigned int p = 0; p < result.size(); ++p)
+        {
+          auto &r     = result[p];
+          r.max_gap   = Utilities::MPI::max(r.max_gap, comm);
+          r.n_paired  = Utilities::MPI::sum(r.n_paired, comm);
+          r.face_size = face_size[p];
+        }
+      for (auto &r : result)
+        {
+          r.force = Utilities::MPI::sum(r.force, comm);
+          r.p_max = Utilities::MPI::max(r.p_max, comm);
+          r.normal_force_local =
+            Utilities::MPI::sum(r.normal_force_local, comm);
+          r.tangential_force_local =
+            Utilities::MPI::sum(r.tangential_force_local, comm);
+          r.n_points  = Utilities::MPI::sum(r.n_points, comm);
+          r.n_contact = Utilities::MPI::sum(r.n_contact, comm);
+          r.n_stick   = Utilities::MPI::sum(r.n_stick, comm);
+          r.n_slip    = Utilities::MPI::sum(r.n_slip, comm);
+        }
+      return result;
+    }
+
+
+    template <int dim>
+    std::vector<typename ContactProblem<dim>::PointRecord>
+    ContactProblem<dim>::gather_points() const
+    {
+      std::vector<double> pack;
+      for (const auto &point : points)
+        {
+          const unsigned int p  = slave_faces[point.face].pair;
+          const double       mu = parameters.contact.pairs[p].friction;
+          pack.push_back(p);
+          for (unsigned int d = 0; d < dim; ++d)
+            pack.push_back(point.x_ref[d]);
+          pack.push_back(point.weight);
+          pack.push_back(-point.lambda);
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            pack.push_back(mu * point.lambda * point.Lambda[k]);
+          pack.push_back(point.gap);
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            pack.push_back(point.slip[k]);
+          pack.push_back(static_cast<double>(point.status));
+          pack.push_back(point.paired);
+        }
+      std::vector<PointRecord> records;
+      for (const auto &part : Utilities::MPI::all_gather(comm, pack))
+        for (unsigned int i = 0; i < part.size();)
+          {
+            PointRecord r;
+            r.pair = static_cast<unsigned int>(part[i++]);
+            for (unsigned int d = 0; d < dim; ++d)
+              r.x[d] = part[i++];
+            r.weight = part[i++];
+            r.p      = part[i++];
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              r.traction[k] = part[i++];
+            r.gap = part[i++];
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              r.slip[k] = part[i++];
+            r.status = static_cast<PointStatus>(static_cast<int>(part[i++]));
+            r.paired = part[i++] != 0;
+            records.push_back(r);
+          }
+      std::sort(records.begin(),
+                records.end(),
+                [](const PointRecord &a, const PointRecord &b) {
+                  if (a.pair != b.pair)
+                    return a.pair < b.pair;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (std::abs(a.x[d] - b.x[d]) >
+                        1e-12 * (1 + std::abs(a.x[d])))
+                      return a.x[d] < b.x[d];
+                  return false;
+                });
+      return records;
+    }
+
+
+    template <int dim>
+    std::string
+    ContactProblem<dim>::write_csv(const std::string &filename) const
+    {
+      const auto records = gather_points();
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return "";
+      return Postprocess::write_atomically(filename, [&](std::ostream &csv) {
+        const char *axis[] = {"x", "y", "z"};
+        csv << "pair";
+        for (unsigned int d = 0; d < dim; ++d)
+          csv << "," << axis[d];
+        csv << ",p";
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          csv << ",traction_t" << k + 1;
+        csv << ",gap";
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          csv << ",slip_t" << k + 1;
+        csv << ",status\n";
+        csv << std::setprecision(10);
+        for (const auto &r : records)
+          {
+            csv << r.pair + 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              csv << "," << r.x[d];
+            csv << "," << r.p;
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              csv << "," << r.traction[k];
+            // No master face, no gap: an empty field (a missing value),
+            // not NaN.
+            csv << ",";
+            if (r.paired)
+              csv << r.gap;
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              csv << "," << r.slip[k];
+            // A closed point of a frictionless pair has no stick or slip.
+            const bool frictionless =
+              parameters.contact.pairs[r.pair].friction == 0;
+            csv << ","
+                << (frictionless && r.status != PointStatus::free ?
+                      "contact" :
+                      to_string(r.status))
+                << "\n";
+          }
+      });
+    }
+
+
+    template <int dim>
+    std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>>
+    ContactProblem<dim>::nodal_fields(const DoFHandler<dim> &scalar_dofs) const
+    {
+      const IndexSet owned = scalar_dofs.locally_owned_dofs();
+      IndexSet       relevant;
+      DoFTools::extract_locally_relevant_dofs(scalar_dofs, relevant);
+      std::vector<std::string> names = {"contact_pressure", "gap", "status"};
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        names.push_back("tangential_traction_" + std::to_string(k + 1));
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        names.push_back("slip_" + std::to_string(k + 1));
+      std::vector<TrilinosWrappers::MPI::Vector> sums(
+        names.size() + 1, writable_vector(owned, relevant, comm));
+
+      std::vector<types::global_dof_index> scalar_cell_dofs(
+        scalar_dofs.get_fe().n_dofs_per_cell());
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (point.q == 0)
+            {
+              typename DoFHandler<dim>::active_cell_iterator scell(
+                &dof_handler.get_triangulation(),
+                face.cell->level(),
+                face.cell->index(),
+                &scalar_dofs);
+              scell->get_dof_indices(scalar_cell_dofs);
+            }
+          const double mu =
+            parameters.contact.pairs[slave_faces[point.face].pair].friction;
+          std::vector<double> values = {-point.lambda,
+                                        point.paired ? point.gap : 0.,
+                                        static_cast<double>(point.status)};
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            values.push_back(mu * point.lambda * point.Lambda[k]);
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            values.push_back(point.slip[k]);
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const unsigned int i = face.node_local[l];
+              const double       w = point.weight * point.psi[l];
+              const auto         d =
+                scalar_cell_dofs[fe.system_to_component_index(i).second];
+              for (unsigned int v = 0; v < values.size(); ++v)
+                add_entry(sums[v], d, w * values[v]);
+              add_entry(sums.back(), d, w);
+            }
+        }
+      for (auto &s : sums)
+        s.compress(VectorOperation::add);
+      std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>> result;
+      for (unsigned int v = 0; v < names.size(); ++v)
+        {
+          TrilinosWrappers::MPI::Vector owned_values(owned, comm);
+          for (const auto i : owned)
+            if (sums.back()[i] != 0)
+              owned_values[i] = sums[v][i] / sums.back()[i];
+          owned_values.compress(VectorOperation::insert);
+          TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
+          ghosted = owned_values;
+          result.emplace_back(names[v], ghosted);
+        }
+      return result;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::multipliers_to_field(
+      const TrilinosWrappers::MPI::Vector &state,
+      TrilinosWrappers::MPI::Vector       &field) const
+    {
+      // A node may lie on slave faces of several ranks and on none of its
+      // owner's: every rank writes the nodes of its faces (the same
+      // values), averaged through a count.
+      IndexSet touched(dof_handler.n_dofs());
+      for (const auto &face : slave_faces)
+        for (const auto d : face.node_dofs)
+          touched.add_index(d);
+      touched.compress();
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      auto            num   = writable_vector(owned, touched, comm);
+      auto            den   = writable_vector(owned, touched, comm);
+      for (const auto &face : slave_faces)
+        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+          {
+            const auto &info = nodes.at(face.node_dofs[l * dim]);
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                double value = 0;
+                if (c == 0)
+                  value = state[info.lambda];
+                else if (info.friction != numbers::invalid_dof_index)
+                  value = state[info.friction + c - 1];
+                add_entry(num, face.node_dofs[l * dim + c], value);
+                add_entry(den, face.node_dofs[l * dim + c], 1.);
+              }
+          }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned)
+        field[i] = den[i] != 0 ? num[i] / den[i] : 0.;
+      field.compress(VectorOperation::insert);
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::multipliers_from_field(
+      const TrilinosWrappers::MPI::Vector &field,
+      TrilinosWrappers::MPI::Vector       &state_owned) const
+    {
+      auto num = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto den = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      for (const auto &face : slave_faces)
+        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+          {
+            const auto &info = nodes.at(face.node_dofs[l * dim]);
+            add_entry(num, info.lambda, field[face.node_dofs[l * dim]]);
+            add_entry(den, info.lambda, 1.);
+            if (info.friction != numbers::invalid_dof_index)
+              for (unsigned int c = 1; c < dim; ++c)
+                {
+                  add_entry(num,
+                            info.friction + c - 1,
+                            field[face.node_dofs[l * dim + c]]);
+                  add_entry(den, info.friction + c - 1, 1.);
+                }
+          }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned_multipliers)
+        state_owned[i] = den[i] != 0 ? num[i] / den[i] : 0.;
+      state_owned.compress(VectorOperation::insert);
+    }
+
+
+    template <int dim>
+    std::vector<typename DoFHandler<dim>::active_cell_iterator>
+    ContactProblem<dim>::contact_zone_cells() const
+    {
+      std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+      std::vector<unsigned int> master_active(master_faces.size(), 0);
+      std::vector<bool>         slave_active(slave_faces.size(), false);
+      for (const auto &point : points)
+        if (point.status != PointStatus::free)
+          {
+            slave_active[point.face] = true;
+            if (point.master_face >= 0)
+              master_active[point.master_face] = 1;
+          }
+      for (unsigned int f = 0; f < slave_faces.size(); ++f)
+        if (slave_active[f])
+          cells.push_back(slave_faces[f].cell);
+      Utilities::MPI::max(master_active, comm, master_active);
+      for (unsigned int m = 0; m < master_faces.size(); ++m)
+        if (master_faces[m].own_cell >= 0 && master_active[m] != 0)
+          cells.push_back(own_master_cells[master_faces[m].own_cell]);
+      return cells;
+    }
+
+
+    template class ContactProblem<2>;
+    template class ContactProblem<3>;
+  } // namespace Contact
+} // namespace Signorini

@@ -1,0 +1,432 @@
+// Pairing: search of the master, projection, mortar segmentation, re-
+// projection within Newton.
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <signorini/contact/contact_problem.h>
+#include <signorini/contact/distributed_vectors.h>
+#include <signorini/contact/segmentation.h>
+#include <signorini/postprocess/output_files.h>
+
+#include "helpers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <set>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using internal::add_entry;
+    using internal::faces_meeting;
+    using internal::offset_of;
+    using internal::pair_name;
+    using internal::writable_vector;
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::pair(const TrilinosWrappers::MPI::Vector &state,
+                              const double                         time,
+                              const double                         t0,
+                              const bool within_newton)
+    {
+      const auto &pairs = parameters.contact.pairs;
+
+      // Rigid obstacles at time t; their displacement since the step start.
+      std::vector<Tensor<1, dim>> rigid_increment(pairs.size());
+      for (unsigned int p = 0; p < pairs.size(); ++p)
+        if (obstacles[p])
+          {
+            Tensor<1, dim> d0, d1;
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                motions[p]->set_time(t0);
+                d0[c] = motions[p]->value(Point<dim>(), c);
+                motions[p]->set_time(time);
+                d1[c] = motions[p]->value(Point<dim>(), c);
+              }
+            obstacles[p]->set_translation(d1);
+            rigid_increment[p] = d1 - d0;
+          }
+
+      // Master faces in the current configuration and their boxes.
+      std::vector<std::vector<Point<dim>>> x_master(master_faces.size());
+      std::vector<Point<dim>>              inside(master_faces.size());
+      std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
+      for (unsigned int m = 0; m < master_faces.size(); ++m)
+        {
+          master_face_position(m, state, x_master[m], inside[m]);
+          BoundingBox<dim> box(x_master[m]);
+          box.extend(0.5 * face_size[master_faces[m].pair]);
+          boxes.emplace_back(box, m);
+        }
+      const auto tree = pack_rtree(boxes);
+
+      if (mortar)
+        segment(state, x_master, tree);
+
+      const auto        &contact      = parameters.contact;
+      const unsigned int freeze_after = contact.freeze_after_cycles;
+      unsigned int       n_pinned     = 0;
+      n_deep                          = 0;
+      pairings_in_step += within_newton ? 0 : 1;
+      for (auto &point : points)
+        {
+          const auto        &face   = slave_faces[point.face];
+          const unsigned int p      = face.pair;
+          const Point<dim>   x_e    = slave_position(point, state);
+          double             lambda = 0;
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            lambda += state[face.lambda_dofs[l]] * point.psi[l];
+          point.lambda_frozen = lambda;
+
+          point.paired      = false;
+          point.master_face = -1;
+          // Pairs the point with master face m if its projection onto m
+          // converges within the tolerance (also just outside the face).
+          const auto pair_with_face = [&](const int m) {
+            const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
+            if (!proj.converged ||
+                proj.violation > contact.projection_tolerance)
+              return false;
+            point.paired      = true;
+            point.master_face = m;
+            take_projection(point, proj);
+            return true;
+          };
+          if (obstacles[p])
+            {
+              const auto projection = obstacles[p]->project(x_e);
+              point.paired          = true;
+              point.normal          = projection.normal;
+              point.x_m_rigid       = projection.x_m;
+              point.rigid_increment = rigid_increment[p];
+            }
+          else if (point.pinned_face >= 0 && !mortar)
+            {
+              // Pinned by a pairing 2-cycle: the face is kept while the
+              // projection onto it stays within the tolerance.
+              if (!pair_with_face(point.pinned_face))
+                point.pinned_face = -1;
+            }
+          else if (point.segment_master >= 0)
+            // Mortar: the master face of the point's piece (the search
+            // below only if the projection leaves that face).
+            pair_with_face(point.segment_master);
+          if (!obstacles[p] && !point.paired)
+            {
+              BoundingBox<dim> query(std::make_pair(x_e, x_e));
+              query.extend(0.5 * face_size[p]);
+              const auto hits = faces_meeting(tree, query);
+              // Inside projections first (closest), then the smallest
+              // violation within the tolerance.
+              double best_inside = std::numeric_limits<double>::max();
+              double best_violation =
+                contact.projection_tolerance * (1 + 1e-12);
+              FaceProjection<dim> best;
+              int                 best_face      = -1;
+              bool                best_is_inside = false;
+              for (const unsigned int m : hits)
+                {
+                  if (master_faces[m].pair != p)
+                    continue;
+                  const auto proj =
+                    project_onto_face(x_e, x_master[m], inside[m]);
+                  if (!proj.converged)
+                    continue;
+                  const double distance = x_e.distance(proj.x_m);
+                  if (proj.inside)
+                    {
+                      if (distance < best_inside)
+                        {
+                          best_inside    = distance;
+                          best           = proj;
+                          best_face      = m;
+                          best_is_inside = true;
+                        }
+                    }
+                  else if (!best_is_inside && proj.violation < best_violation)
+                    {
+                      best_violation = proj.violation;
+                      best           = proj;
+                      best_face      = m;
+                    }
+                }
+              if (best_face >= 0)
+                {
+                  point.paired      = true;
+                  point.master_face = best_face;
+                  take_projection(point, best);
+                }
+              else
+                pair_deep(point, x_e, x_master, inside, tree);
+            }
+          // Pairing 2-cycle: back on the face of two pairings before.
+          if (!within_newton && !mortar && !obstacles[p] &&
+              point.pinned_face < 0 && freeze_after > 0 &&
+              point.master_face >= 0 && pairings_in_step >= 3 &&
+              point.master_face == point.geo_face_2 &&
+              point.master_face != point.geo_face_1)
+            {
+              point.pinned_face = point.master_face;
+              ++n_pinned;
+            }
+          if (!within_newton)
+            {
+              point.geo_face_2 = point.geo_face_1;
+              point.geo_face_1 = point.master_face;
+            }
+          // The contact normal points into the master (formulation.md 2),
+          // along the slave's outward normal.
+          if (!point.paired)
+            point.normal = point.slave_normal;
+          // Normal choice (nodal rule only, checked at input).
+          if (contact.normal == NormalChoice::slave)
+            point.normal = point.slave_normal;
+          else if (contact.normal == NormalChoice::average && point.paired)
+            {
+              point.normal += point.slave_normal;
+              point.normal /= point.normal.norm();
+            }
+          // The 3D crossing axis of T is kept until the next pairing, so
+          // that T stays smooth in n when n follows the iterate.
+          point.tangent_axis = tangent_axis<dim>(point.normal);
+          point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);
+        }
+      n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
+      n_deep         = Utilities::MPI::sum(n_deep, comm);
+
+      // Dual multipliers only on slave faces whose points are all paired:
+      // on a face that leaves the master partly, psi~ (negative lobes)
+      // would weigh the gap of the paired part alone.
+      std::vector<bool> covered(slave_faces.size(), true);
+      for (const auto &point : points)
+        covered[point.face] = covered[point.face] && point.paired;
+      for (auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          point.psi_lambda = point.psi;
+          if (face.dual.empty() || !covered[point.face])
+            continue;
+          const unsigned int n = point.psi.size();
+          for (unsigned int l = 0; l < n; ++l)
+            {
+              point.psi_lambda[l] = 0;
+              for (unsigned int m = 0; m < n; ++m)
+                point.psi_lambda[l] += face.dual[l * n + m] * point.psi[m];
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::pair_deep(
+      ContactPoint                                           &point,
+      const Point<dim>                                       &x_e,
+      const std::vector<std::vector<Point<dim>>>             &x_master,
+      const std::vector<Point<dim>>                          &inside,
+      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    {
+      // A slave point deeper in the master body than the search box reaches
+      // (a deep initial interpenetration, or a large load step) is paired
+      // from the penetrated side: with the nearest master faces onto which
+      // it projects inside the face and behind it (g > 0). Dropping it
+      // would silently lose the contact.
+      const unsigned int p = slave_faces[point.face].pair;
+      std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+      tree.query(boost::geometry::index::nearest(x_e, 8),
+                 std::back_inserter(hits));
+      std::vector<unsigned int> faces;
+      for (const auto &hit : hits)
+        if (master_faces[hit.second].pair == p)
+          faces.push_back(hit.second);
+      std::sort(faces.begin(), faces.end()); // partition-independent ties
+      double              best_distance = std::numeric_limits<double>::max();
+      int                 best_face     = -1;
+      FaceProjection<dim> best;
+      for (const unsigned int m : faces)
+        {
+          const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
+          if (!proj.converged || !proj.inside ||
+              (x_e - proj.x_m) * proj.normal <= 0)
+            continue;
+          const double distance = x_e.distance(proj.x_m);
+          if (distance < best_distance)
+            {
+              best_distance = distance;
+              best_face     = m;
+              best          = proj;
+            }
+        }
+      if (best_face < 0)
+        return;
+      point.paired      = true;
+      point.master_face = best_face;
+      take_projection(point, best);
+      ++n_deep;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::segment(
+      const TrilinosWrappers::MPI::Vector                    &state,
+      const std::vector<std::vector<Point<dim>>>             &x_master,
+      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    {
+      std::vector<ContactPoint> old_points;
+      old_points.swap(points);
+      unsigned int next_old = 0;
+      n_pieces              = 0;
+      std::vector<Point<dim>>                      x_slave;
+      std::vector<const std::vector<Point<dim>> *> candidates;
+      std::vector<unsigned int>                    candidate_face;
+      for (unsigned int f = 0; f < slave_faces.size(); ++f)
+        {
+          const auto        &face      = slave_faces[f];
+          const unsigned int p         = face.pair;
+          const std::size_t  first_new = points.size();
+          if (obstacles[p])
+            {
+              // Analytic master: nothing to cut, nodal rule (see the
+              // constructor).
+              const auto &quadrature = rule->face_quadrature(f);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                points.push_back(
+                  make_point(f, q, quadrature.point(q), quadrature.weight(q)));
+            }
+          else
+            {
+              x_slave = face.X;
+              for (unsigned int k = 0; k < x_slave.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  x_slave[k][c] +=
+                    state[face.node_dofs[face.k_node[k] * dim + c]];
+              BoundingBox<dim> box(x_slave);
+              box.extend(0.5 * face_size[p]);
+              candidates.clear();
+              candidate_face.clear();
+              for (const auto m : faces_meeting(tree, box))
+                if (master_faces[m].pair == p)
+                  {
+                    candidates.push_back(&x_master[m]);
+                    candidate_face.push_back(m);
+                  }
+              const auto cut =
+                segment_slave_face<dim>(x_slave, candidates, segment_order);
+              n_pieces += cut.n_pieces;
+              for (unsigned int q = 0; q < cut.points.size(); ++q)
+                {
+                  points.push_back(
+                    make_point(f, q, cut.points[q], cut.weights[q]));
+                  points.back().segment_master =
+                    cut.master[q] >= 0 ? candidate_face[cut.master[q]] : -1;
+                }
+            }
+          // Statuses carried over from the nearest old point of the face,
+          // so that an unchanged contact state counts no change.
+          while (next_old < old_points.size() && old_points[next_old].face < f)
+            ++next_old;
+          for (std::size_t i = first_new; i < points.size(); ++i)
+            {
+              double best = std::numeric_limits<double>::max();
+              for (std::size_t j = next_old;
+                   j < old_points.size() && old_points[j].face == f;
+                   ++j)
+                if (const double d2 =
+                      (old_points[j].xi - points[i].xi).norm_square();
+                    d2 < best)
+                  {
+                    best                      = d2;
+                    points[i].status          = old_points[j].status;
+                    points[i].friction_active = old_points[j].friction_active;
+                    points[i].slip_direction  = old_points[j].slip_direction;
+                    // The geometric loop's history and freeze (the
+                    // segmentation changes with every pairing).
+                    const auto &o              = old_points[j];
+                    points[i].geo_status_1     = o.geo_status_1;
+                    points[i].geo_status_2     = o.geo_status_2;
+                    points[i].geo_direction_1  = o.geo_direction_1;
+                    points[i].geo_direction_2  = o.geo_direction_2;
+                    points[i].geometric_freeze = o.geometric_freeze;
+                    points[i].was_frozen       = o.geometric_freeze;
+                    points[i].freeze_contact =
+                      o.geometric_freeze && o.freeze_contact;
+                    points[i].freeze_stick =
+                      o.geometric_freeze && o.freeze_stick;
+                    points[i].frozen_slip_direction =
+                      o.geometric_freeze ? o.frozen_slip_direction :
+                                           Tensor<1, dim>();
+                  }
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::master_face_position(
+      const unsigned int                   m,
+      const TrilinosWrappers::MPI::Vector &state,
+      std::vector<Point<dim>>             &x,
+      Point<dim>                          &inside) const
+    {
+      const auto &face = master_faces[m];
+      x.resize(face.X.size());
+      Tensor<1, dim> mean_u;
+      for (unsigned int k = 0; k < face.X.size(); ++k)
+        {
+          x[k] = face.X[k];
+          for (unsigned int c = 0; c < dim; ++c)
+            x[k][c] += state[face.dofs[k * dim + c]];
+          mean_u += (x[k] - face.X[k]) / double(face.X.size());
+        }
+      inside = face.inside + mean_u;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::update_projections(
+      const TrilinosWrappers::MPI::Vector &state)
+    {
+      std::vector<Point<dim>> x_face;
+      Point<dim>              inside;
+      for (auto &point : points)
+        {
+          point.reprojected = false;
+          if (!newton_pairing_pair[slave_faces[point.face].pair] ||
+              !point.paired || point.master_face < 0)
+            continue;
+          master_face_position(point.master_face, state, x_face, inside);
+          const auto proj =
+            project_onto_face(slave_position(point, state), x_face, inside);
+          // Off the face (beyond the projection tolerance): the pairing's
+          // projection stays, frozen, until the next pairing finds the
+          // point's new face.
+          if (!proj.converged ||
+              proj.violation > parameters.contact.projection_tolerance)
+            continue;
+          point.reprojected = true;
+          take_projection(point, proj);
+          point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);
+        }
+    }
+
+
+    template class ContactProblem<2>;
+    template class ContactProblem<3>;
+  } // namespace Contact
+} // namespace Signorini

@@ -1,0 +1,349 @@
+// Contact statuses per multiplier node and the initial multipliers.
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <signorini/contact/contact_problem.h>
+#include <signorini/contact/distributed_vectors.h>
+#include <signorini/contact/segmentation.h>
+#include <signorini/postprocess/output_files.h>
+
+#include "helpers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <set>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using internal::add_entry;
+    using internal::faces_meeting;
+    using internal::offset_of;
+    using internal::pair_name;
+    using internal::writable_vector;
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::set_initial_multipliers(
+      const TrilinosWrappers::MPI::Vector &state,
+      TrilinosWrappers::MPI::Vector       &state_owned) const
+    {
+      const auto status = parameters.contact.initial_status;
+      // lambda_aug = lambda - rho_n g = -/+ delta at every point, as the
+      // psi-weighted average over the node's points. 'penetrating': the
+      // points that touch (g >= 0 up to the round-off of mesh coordinates,
+      // 1e-8 of the face size) start closed, as where they penetrate; the
+      // others keep lambda = 0 (lambda_aug = -rho_n g: open).
+      const double touch_tolerance = 1e-8;
+      auto num = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto den = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      for (const auto &point : points)
+        {
+          const auto        &face = slave_faces[point.face];
+          const unsigned int p    = face.pair;
+          const double       g    = point_gap(point, state);
+          // delta: half the zero friction threshold of the law (see
+          // law_parameters), so that lambda_aug = -/+ delta sets the normal
+          // status strictly while the friction of a point closed this way
+          // starts inactive, as for a point that has just closed
+          // (formulation.md 3.3). A larger delta would be a tiny nonzero
+          // threshold: Lambda = F_t / (mu delta) of order 1e8 at the first
+          // iterate.
+          const double delta = 0.5 * law_parameters(p).zero_threshold;
+          if (status != InitialStatus::open && !point.paired)
+            continue;
+          double target;
+          if (status == InitialStatus::closed)
+            target =
+              std::min(0., rho_n[p] * std::max(g, -1e300 / rho_n[p])) - delta;
+          else if (status == InitialStatus::penetrating)
+            target = g >= -touch_tolerance * face_size[p] ? -delta : 0.;
+          else
+            target = std::max(0., rho_n[p] * g) + delta;
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const double w = point.weight * point.psi[l];
+              add_entry(num, face.lambda_dofs[l], w * target);
+              add_entry(den, face.lambda_dofs[l], w);
+            }
+        }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned_multipliers)
+        if (i < n_u + n_lambda && den[i] != 0)
+          state_owned[i] = num[i] / den[i];
+      state_owned.compress(VectorOperation::insert);
+    }
+
+
+    template <int dim>
+    PointResponse<dim>
+    ContactProblem<dim>::node_status_response(const ContactPoint    &point,
+                                              const PointState<dim> &s) const
+    {
+      // The multiplier force -lambda n (the law's -lambda_aug n without
+      // the augmentation; lambda = 0 at free nodes); the point is labelled
+      // with the status of its nearest node (statistics and output).
+      PointResponse<dim> r{};
+      const auto        &face = slave_faces[point.face];
+      const auto         nearest =
+        std::max_element(point.psi.begin(), point.psi.end()) -
+        point.psi.begin();
+      r.in_contact = point.paired && node_active.at(face.lambda_dofs[nearest]);
+      r.status     = r.in_contact ? PointStatus::slip : PointStatus::free;
+      r.friction_active = false;
+      if (r.in_contact && friction_node_pair[face.pair])
+        {
+          // Labelled with the friction status of the same node; the
+          // friction force and rows are the assembly's (per node).
+          const auto &nf    = node_friction.at(face.lambda_dofs[nearest]);
+          r.friction_active = nf.active;
+          if (nf.active && nf.stick)
+            r.status = PointStatus::stick;
+          else if (nf.active)
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              r.slip_direction += nf.H[k] / nf.H.norm() * s.tangents[k];
+        }
+      if (point.paired)
+        {
+          r.force          = -s.lambda * s.normal;
+          r.dforce_dlambda = -s.normal;
+        }
+      return r;
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::decide_node_statuses(
+      const TrilinosWrappers::MPI::Vector &state,
+      const TrilinosWrappers::MPI::Vector &start,
+      const bool                           new_iterate,
+      ContactStatistics                   &stats)
+    {
+      // Weighted gap G_l and weight D_l of every node (faces of all ranks).
+      // P_l: the paired share of the node (psi >= 0); a node without
+      // paired points has no gap and stays free.
+      auto G = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto D = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto P = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
+      // component k in the vector of index k (by the node's lambda DoF).
+      std::vector<TrilinosWrappers::MPI::Vector> W;
+      if (any_friction_node)
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          W.push_back(
+            writable_vector(owned_multipliers, multiplier_ghosts, comm));
+      for (const auto &point : points)
+        {
+          const auto &face = slave_faces[point.face];
+          if (!node_status_pair[face.pair])
+            continue;
+          const double g    = point.paired ? point_gap(point, state) : 0.;
+          const bool   slip = point.paired && friction_node_pair[face.pair];
+          const auto   v =
+            slip ? point_slip(point, state, start) : Tensor<1, dim - 1>();
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const double w = point.weight * point.psi_lambda[l];
+              add_entry(G, face.lambda_dofs[l], w * g);
+              add_entry(D, face.lambda_dofs[l], w);
+              if (point.paired)
+                add_entry(P, face.lambda_dofs[l], point.weight * point.psi[l]);
+              if (slip)
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  add_entry(W[k], face.lambda_dofs[l], w * v[k]);
+            }
+        }
+      G.compress(VectorOperation::add);
+      D.compress(VectorOperation::add);
+      P.compress(VectorOperation::add);
+      TrilinosWrappers::MPI::Vector G_read(owned_multipliers,
+                                           multiplier_ghosts,
+                                           comm);
+      TrilinosWrappers::MPI::Vector D_read(owned_multipliers,
+                                           multiplier_ghosts,
+                                           comm);
+      TrilinosWrappers::MPI::Vector P_read(owned_multipliers,
+                                           multiplier_ghosts,
+                                           comm);
+      G_read = G;
+      D_read = D;
+      P_read = P;
+      std::vector<TrilinosWrappers::MPI::Vector> W_read(W.size());
+      for (unsigned int k = 0; k < W.size(); ++k)
+        {
+          W[k].compress(VectorOperation::add);
+          W_read[k].reinit(owned_multipliers, multiplier_ghosts, comm);
+          W_read[k] = W[k];
+        }
+      unsigned int changed = 0;
+      for (const auto &face : slave_faces)
+        if (node_status_pair[face.pair])
+          for (const auto dof : face.lambda_dofs)
+            {
+              const bool active = P_read[dof] > 0 &&
+                                  node_in_contact(state[dof],
+                                                  G_read[dof],
+                                                  D_read[dof],
+                                                  rho_n[face.pair]) &&
+                                  node_release.count(dof) == 0;
+              const auto it = node_active.find(dof);
+              if (it != node_active.end() && it->second == active)
+                continue;
+              // Counted once, by the owner (a node is on several faces).
+              if (owned_multipliers.is_element(dof) &&
+                  (it != node_active.end() || active))
+                ++changed;
+              node_active[dof] = active;
+            }
+      // Friction status per node (theory.md, "Friction status per node"):
+      // active if in contact with a threshold above zero (formulation.md
+      // 3.3); H_l = Lambda_l + rho_t W_l / D_l; stick iff |H_l| <= 1 (the
+      // round-off tie as in the point law). Each node once (it is on
+      // several faces), then its anti-cycling.
+      std::set<types::global_dof_index> seen;
+      if (any_friction_node)
+        for (unsigned int f = 0; f < slave_faces.size(); ++f)
+          {
+            const auto &face = slave_faces[f];
+            if (!friction_node_pair[face.pair])
+              continue;
+            const auto law = law_parameters(face.pair);
+            for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
+              {
+                const auto dof = face.lambda_dofs[l];
+                if (!seen.insert(dof).second)
+                  continue;
+                NodeFriction nf;
+                nf.active = node_active.at(dof) &&
+                            std::abs(state[dof]) > law.zero_threshold &&
+                            D_read[dof] > 0;
+                if (nf.active)
+                  {
+                    for (unsigned int k = 0; k < dim - 1; ++k)
+                      nf.H[k] = state[face.friction_dofs[l * (dim - 1) + k]] +
+                                law.rho_t * W_read[k][dof] / D_read[dof];
+                    nf.stick = nf.H.norm() <= 1. + stick_tie;
+                  }
+                const auto  it    = node_friction.find(dof);
+                const bool  owned = owned_multipliers.is_element(dof);
+                const auto *previous =
+                  it == node_friction.end() ? nullptr : &it->second;
+                const auto used = node_anti_cycling(
+                  dof, nf, previous, new_iterate, owned, stats);
+                if (owned && friction_status_differs(previous, used))
+                  ++changed;
+                node_friction[dof] = used;
+              }
+          }
+      return changed;
+    }
+
+
+    template <int dim>
+    bool
+    ContactProblem<dim>::friction_status_differs(const NodeFriction *previous,
+                                                 const NodeFriction &now)
+    {
+      if (!previous)
+        return now.active;
+      return previous->active != now.active || previous->stick != now.stick ||
+             (now.active && !now.stick && !previous->stick &&
+              previous->H * now.H < 0);
+    }
+
+
+    template <int dim>
+    typename ContactProblem<dim>::NodeFriction
+    ContactProblem<dim>::node_anti_cycling(const types::global_dof_index dof,
+                                           const NodeFriction           &nf,
+                                           const NodeFriction *previous,
+                                           const bool          new_iterate,
+                                           const bool          owned,
+                                           ContactStatistics  &stats)
+    {
+      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
+      auto               found        = node_cycle.find(dof);
+      if (found == node_cycle.end())
+        {
+          NodeCycle c;
+          c.before = previous ? *previous : NodeFriction();
+          found    = node_cycle.emplace(dof, c).first;
+        }
+      NodeCycle   &c    = found->second;
+      NodeFriction used = nf;
+      // Frozen (only while the node is in contact with a threshold): the
+      // status of the freeze; the plain law's status is kept for the
+      // check at convergence (release_frozen()).
+      c.plain_violated = false;
+      if (c.freeze && nf.active)
+        {
+          used.frozen = true;
+          used.stick  = c.freeze_stick;
+          if (!c.freeze_stick)
+            used.H = c.q;
+          c.plain = nf;
+          c.plain_violated =
+            c.freeze_stick ? !nf.stick : (nf.stick || nf.H * c.q < 0);
+          if (owned)
+            {
+              ++stats.n_frozen;
+              stats.n_violated += c.plain_violated;
+            }
+        }
+      if (!new_iterate)
+        return used;
+      // A return to the status of two iterates back (a 2-cycle), or more
+      // than 2 N changes (longer cycles), as for points.
+      const bool changed =
+        friction_status_differs(previous, used) && !used.frozen;
+      c.changes += changed;
+      const bool back = changed && iterates_recorded >= 2 &&
+                        (!friction_status_differs(&c.before, used) ||
+                         (freeze_after > 0 && c.changes > 2 * freeze_after));
+      if (back)
+        {
+          ++c.cycles;
+          stats.n_cycling += owned;
+        }
+      // Frozen from the next evaluation on, slipping along the last slip
+      // direction of the cycle (the cycle went through stick, or reversed:
+      // then the current one).
+      if (back && freeze_after > 0 && c.cycles >= freeze_after &&
+          !c.was_frozen && used.active)
+        {
+          const Tensor<1, dim - 1> h =
+            !used.stick ? used.H :
+                          (previous && previous->active && !previous->stick ?
+                             previous->H :
+                             Tensor<1, dim - 1>());
+          if (h.norm() > 0)
+            {
+              c.was_frozen   = true;
+              c.freeze       = true;
+              c.freeze_stick = false;
+              c.q            = h / h.norm();
+              stats.n_newly_frozen += owned;
+            }
+        }
+      c.before = previous ? *previous : NodeFriction();
+      return used;
+    }
+
+
+    template class ContactProblem<2>;
+    template class ContactProblem<3>;
+  } // namespace Contact
+} // namespace Signorini
