@@ -7,6 +7,7 @@
 #include <deal.II/fe/fe_q.h>
 
 #include <deal.II/base/function_signed_distance.h>
+#include <deal.II/physics/transformations.h>
 
 #include <signorini/contact/obstacles/cylinder.h>
 #include <signorini/contact/obstacles/level_set.h>
@@ -507,6 +508,38 @@ namespace
                                                       1.),
                                Point<2>(0.3, -0.7),
                                1e-8);
+
+    // A rigid motion: a quarter turn counterclockwise about (1, 0), then
+    // the translation (0, 2). The plane y < 0 (outward normal +y) becomes
+    // the half-plane x > 1 shifted up: outward normal -x, contact normal
+    // +x; the point (0.5, 2.3) is 0.5 outside it, its closest point
+    // (1, 2.3).
+    {
+      Signorini::Obstacles::Plane<2>       plane(Point<2>(),
+                                           Tensor<1, 2>({0., 1.}));
+      Signorini::Obstacles::RigidMotion<2> motion;
+      motion.rotation    = Tensor<2, 2>({{0., -1.}, {1., 0.}});
+      motion.centre      = Point<2>(1., 0.);
+      motion.translation = Tensor<1, 2>({0., 2.});
+      plane.set_motion(motion);
+      check_rigid<2>("plane, quarter turn about (1, 0), translated (0, 2)",
+                     plane.project(Point<2>(0.5, 2.3)),
+                     Point<2>(1., 2.3),
+                     Tensor<1, 2>({1., 0.}),
+                     -0.5);
+      Signorini::Obstacles::Sphere<3>      ball(Point<3>(1., 2., 3.), 2.);
+      Signorini::Obstacles::RigidMotion<3> turn;
+      const Tensor<1, 3> axis = Tensor<1, 3>({1., 2., 2.}) / 3.;
+      turn.rotation =
+        Physics::Transformations::Rotations::rotation_matrix_3d(axis, 0.7);
+      turn.centre      = Point<3>(0., 1., 0.);
+      turn.translation = Tensor<1, 3>({0.1, -0.2, 0.3});
+      ball.set_motion(turn);
+      check_rigid_derivatives<3>("sphere, turned about an oblique axis",
+                                 ball,
+                                 Point<3>(1.5, 2.7, 4.1),
+                                 1e-8);
+    }
 
     const Point<3>       c(1., 2., 3.);
     Signorini::Obstacles::Sphere<3> sphere(c, 2.);

@@ -144,7 +144,10 @@ namespace Signorini
               // obstacle (a normal approach is no slip, whatever n does).
               surface_slip =
                 proj.x_m -
-                obstacles[p]->project(x_e - du_e + point.rigid_increment).x_m;
+                obstacles[p]
+                  ->project(obstacles[p]->get_motion().apply(
+                    motion_at_start[p].inverse(x_e - du_e)))
+                  .x_m;
             }
           s.normal          = point.normal;
           s.tangents        = point.tangents;

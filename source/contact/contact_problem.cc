@@ -115,26 +115,14 @@ namespace Signorini
               motions.emplace_back();
               continue;
             }
-          auto motion = std::make_unique<FunctionParser<dim>>(dim);
-          try
-            {
-              motion->initialize(
-                dim == 2 ? "x,y,t" : "x,y,z,t",
-                std::vector<std::string>(pair.obstacle_motion.begin(),
-                                         pair.obstacle_motion.begin() + dim),
-                parameters.boundary_conditions.constants,
-                true);
-              motion->value(Point<dim>(), 0);
-            }
-          catch (const ExceptionBase &)
-            {
-              throw InputError(pair_name(p) +
-                               ", parameter 'Obstacle motion': cannot parse "
-                               "the expressions; give Dimension expressions "
-                               "of t separated by ';'.");
-            }
-          motions.push_back(std::move(motion));
+          motions.push_back(std::make_unique<Obstacles::Motion<dim>>(
+            pair.obstacle_motion,
+            pair.obstacle_rotation,
+            pair.rotation_centre,
+            parameters.boundary_conditions.constants,
+            pair_name(p)));
         }
+      motion_at_start.resize(contact.pairs.size());
     }
 
 

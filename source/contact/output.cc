@@ -120,7 +120,7 @@ namespace Signorini
         if (obstacles[p])
           {
             result[p].rigid                 = true;
-            result[p].obstacle_displacement = obstacles[p]->get_translation();
+            result[p].obstacle_displacement = obstacles[p]->get_motion().translation;
           }
       for (unsigned int p = 0; p < result.size(); ++p)
         {

@@ -43,21 +43,13 @@ namespace Signorini
     {
       const auto &pairs = parameters.contact.pairs;
 
-      // Rigid obstacles at time t; their displacement since the step start.
-      std::vector<Tensor<1, dim>> rigid_increment(pairs.size());
+      // Rigid obstacles at time t, and where they were at the step start.
+      motion_at_start.resize(pairs.size());
       for (unsigned int p = 0; p < pairs.size(); ++p)
         if (obstacles[p])
           {
-            Tensor<1, dim> d0, d1;
-            for (unsigned int c = 0; c < dim; ++c)
-              {
-                motions[p]->set_time(t0);
-                d0[c] = motions[p]->value(Point<dim>(), c);
-                motions[p]->set_time(time);
-                d1[c] = motions[p]->value(Point<dim>(), c);
-              }
-            obstacles[p]->set_translation(d1);
-            rigid_increment[p] = d1 - d0;
+            motion_at_start[p] = motions[p]->at(t0);
+            obstacles[p]->set_motion(motions[p]->at(time));
           }
 
       // Master faces in the current configuration and their boxes.
@@ -111,7 +103,12 @@ namespace Signorini
               point.paired          = true;
               point.normal          = projection.normal;
               point.x_m_rigid       = projection.x_m;
-              point.rigid_increment = rigid_increment[p];
+              // The increment since the step start of the obstacle's
+            // material point now at x^m.
+            point.rigid_increment =
+              projection.x_m -
+              motion_at_start[p].apply(
+                obstacles[p]->get_motion().inverse(projection.x_m));
             }
           else if (point.pinned_face >= 0 && !mortar)
             {

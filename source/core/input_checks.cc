@@ -272,10 +272,16 @@ namespace Signorini
          axis_labels(bc.body_force.size())});
       const auto &pairs = parameters.contact.pairs;
       for (unsigned int k = 0; k < pairs.size(); ++k)
-        inputs.push_back({"subsection 'Contact/Pair " + std::to_string(k + 1) +
-                            "', parameter 'Obstacle motion'",
-                          pairs[k].obstacle_motion,
-                          axis_labels(pairs[k].obstacle_motion.size())});
+        {
+          const std::string where =
+            "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
+          inputs.push_back({where + ", parameter 'Obstacle motion'",
+                            pairs[k].obstacle_motion,
+                            axis_labels(pairs[k].obstacle_motion.size())});
+          inputs.push_back({where + ", parameter 'Obstacle rotation'",
+                            pairs[k].obstacle_rotation,
+                            axis_labels(pairs[k].obstacle_rotation.size())});
+        }
       const auto &ref = parameters.reference;
       inputs.push_back(
         {"subsection 'Reference solution', parameter 'Displacement'",

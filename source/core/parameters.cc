@@ -712,6 +712,19 @@ namespace Signorini
                       "at t = 0, as Dimension "
                       "expressions of t (and 'Function constants') "
                       "separated by ';' [m].");
+    prm.declare_entry("Obstacle rotation",
+                      "0",
+                      Patterns::Anything(),
+                      "Rotation of a rigid obstacle from its position at "
+                      "t = 0 about 'Rotation centre', as expressions of t: "
+                      "in 2D the angle [rad] (counterclockwise), in 3D the "
+                      "rotation vector (axis times angle [rad], 3 "
+                      "expressions separated by ';'). 0: none.");
+    prm.declare_entry("Rotation centre",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Centre of 'Obstacle rotation' at t = 0 [m]; it moves "
+                      "with 'Obstacle motion'.");
     prm.declare_entry("Friction coefficient",
                       "0",
                       Patterns::Double(0),
@@ -751,7 +764,9 @@ namespace Signorini
     slave_ids  = to_unsigned(prm.get("Slave boundary id"));
     master_ids = to_unsigned(prm.get("Master boundary id"));
     master          = prm.get("Master");
-    obstacle_motion = split_expressions(prm.get("Obstacle motion"));
+    obstacle_motion   = split_expressions(prm.get("Obstacle motion"));
+    obstacle_rotation = split_expressions(prm.get("Obstacle rotation"));
+    rotation_centre   = to_doubles(prm.get("Rotation centre"));
     friction        = prm.get_double("Friction coefficient");
     rho_n_factor    = prm.get_double("Normal coefficient");
     rho_t_factor    = prm.get_double("Tangential coefficient");
@@ -1545,6 +1560,22 @@ namespace Signorini
               throw InputError(where + ", parameter 'Obstacle motion': give " +
                                std::to_string(dim) +
                                " expressions separated by ';'.");
+            const bool no_rotation = p.obstacle_rotation.size() == 1 &&
+                                     Utilities::trim(p.obstacle_rotation[0]) ==
+                                       "0";
+            if (!no_rotation &&
+                p.obstacle_rotation.size() != (dim == 2 ? 1u : 3u))
+              throw InputError(
+                where + ", parameter 'Obstacle rotation': give " +
+                (dim == 2 ? std::string("the angle [rad] as one expression "
+                                        "of t") :
+                            std::string("the rotation vector (axis times "
+                                        "angle [rad]) as 3 expressions of t "
+                                        "separated by ';'")) +
+                ", or 0.");
+            if (p.rotation_centre.size() < dim)
+              throw InputError(where + ", parameter 'Rotation centre': give " +
+                               std::to_string(dim) + " coordinates.");
           }
       }
   }

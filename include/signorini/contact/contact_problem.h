@@ -802,7 +802,10 @@ namespace Signorini
       bool                                             mortar = false;
       unsigned int                                     segment_order = 0;
       std::vector<std::unique_ptr<Obstacles::Interface<dim>>> obstacles; // per pair
-      std::vector<std::unique_ptr<FunctionParser<dim>>> motions;  // per pair
+      // Prescribed motion of each rigid obstacle (nullptr for a meshed
+      // master) and its value at the start of the current step.
+      std::vector<std::unique_ptr<Obstacles::Motion<dim>>> motions;
+      std::vector<Obstacles::RigidMotion<dim>>             motion_at_start;
       std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
       std::vector<bool>   node_status_pair; // per pair
       // 'Geometric linearisation = newton' on a rigid obstacle, per pair.

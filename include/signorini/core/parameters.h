@@ -271,7 +271,9 @@ namespace Signorini
     std::vector<unsigned int> slave_ids;
     std::string               master; // "body" or a registered obstacle
     std::vector<unsigned int> master_ids;
-    std::vector<std::string>  obstacle_motion; // dim expressions of t
+    std::vector<std::string>  obstacle_motion;   // dim expressions of t
+    std::vector<std::string>  obstacle_rotation; // 1 (2D) or 3 (3D), or "0"
+    std::vector<double>       rotation_centre;   // at t = 0
     double                    friction;
     double                    rho_n_factor, rho_t_factor;
     double                    gap_offset;

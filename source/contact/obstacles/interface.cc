@@ -31,17 +31,26 @@ namespace Signorini
 
     template <int dim>
     void
-    Interface<dim>::set_translation(const Tensor<1, dim> &t)
+    Interface<dim>::set_motion(const RigidMotion<dim> &m)
     {
-      translation = t;
+      motion = m;
     }
 
 
     template <int dim>
-    const Tensor<1, dim> &
-    Interface<dim>::get_translation() const
+    void
+    Interface<dim>::set_translation(const Tensor<1, dim> &t)
     {
-      return translation;
+      motion             = RigidMotion<dim>();
+      motion.translation = t;
+    }
+
+
+    template <int dim>
+    const RigidMotion<dim> &
+    Interface<dim>::get_motion() const
+    {
+      return motion;
     }
 
 
@@ -49,8 +58,12 @@ namespace Signorini
     Projection<dim>
     Interface<dim>::project(const Point<dim> &p) const
     {
-      Projection<dim> r = project_reference(p - translation);
-      r.x_m += translation;
+      Projection<dim>      r = project_reference(motion.inverse(p));
+      const Tensor<2, dim> R = motion.rotation;
+      r.x_m                  = motion.apply(r.x_m);
+      r.normal               = R * r.normal;
+      r.dnormal              = R * r.dnormal * transpose(R);
+      r.dclosest             = R * r.dclosest * transpose(R);
       return r;
     }
 

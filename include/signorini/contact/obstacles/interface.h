@@ -6,6 +6,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <signorini/contact/obstacles/motion.h>
 #include <signorini/core/parameters.h>
 #include <signorini/core/plugins.h>
 
@@ -57,9 +58,10 @@ namespace Signorini
 
 
     /**
-     * A rigid obstacle. Its geometry is given in a reference position and
-     * translated rigidly by a vector the contact problem updates with the
-     * load time ('Obstacle motion' of the pair).
+     * A rigid obstacle. Its geometry is given in a reference position (at
+     * t = 0) and moved rigidly by the motion the contact problem sets for
+     * the load time ('Obstacle motion', 'Obstacle rotation' and 'Rotation
+     * centre' of the pair).
      */
     template <int dim>
     class Interface
@@ -99,16 +101,24 @@ namespace Signorini
       virtual std::string
       approximate_derivatives() const;
 
-      /** Sets the current rigid translation [m] from the reference
-       * position. */
+      /** Sets the current rigid motion from the reference position (the
+       * obstacle at t = 0). */
+      void
+      set_motion(const RigidMotion<dim> &motion);
+
+      /** A translation [m] without rotation. */
       void
       set_translation(const Tensor<1, dim> &translation);
 
-      const Tensor<1, dim> &
-      get_translation() const;
+      const RigidMotion<dim> &
+      get_motion() const;
 
-      /** Closest point, inward normal, gap and their derivatives at p [m]
-       * (current translation). */
+      /**
+       * Closest point, inward normal, gap and their derivatives at p [m],
+       * for the obstacle in its current position: p is mapped back to the
+       * reference position, projected there, and the result is mapped
+       * forward (normal R n, dn/dp = R dn R^T, dx^m/dp = R dx^m R^T).
+       */
       Projection<dim>
       project(const Point<dim> &p) const;
 
@@ -118,7 +128,7 @@ namespace Signorini
       project_reference(const Point<dim> &p) const = 0;
 
     private:
-      Tensor<1, dim> translation;
+      RigidMotion<dim> motion;
     };
 
 
