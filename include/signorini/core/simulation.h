@@ -55,6 +55,15 @@ namespace Signorini
     using std::runtime_error::runtime_error;
   };
 
+  /**
+   * One run of a scene: owns mesh, DoFs and vectors and wires the bulk
+   * assembler, the contact problem and the linear solver. Its members are
+   * defined by concern in source/core/: simulation.cc (mesh, DoFs,
+   * constraints, the run over the load steps), simulation_newton.cc (load
+   * step, Newton loop, line search, Jacobian check),
+   * simulation_adaptivity.cc (refinement between steps) and
+   * simulation_output.cc (reactions, reference errors, files, summary).
+   */
   template <int dim>
   class Simulation
   {

@@ -1,0 +1,213 @@
+// Adaptive refinement between load steps and the transfer of the state.
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/dofs/dof_renumbering.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <signorini/core/input_checks.h>
+#include <signorini/core/simulation.h>
+
+#include "simulation_helpers.h"
+
+#include <algorithm>
+#include <signorini/geometry/mesh_checks.h>
+#include <signorini/geometry/scene.h>
+#include <signorini/material/projected_volumetric_strain.h>
+#include <signorini/postprocess/contact_checks.h>
+#include <signorini/postprocess/format.h>
+#include <signorini/postprocess/stress_postprocessor.h>
+#include <signorini/solver/roundoff.h>
+
+#include <cmath>
+#include <chrono>
+#include <filesystem>
+#include <unistd.h>
+#include <fstream>
+#include <iomanip>
+#include <functional>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace Signorini
+{
+  using Postprocess::format;
+  using internal::exact_why;
+  using internal::floor_line;
+  using internal::make_function;
+  using internal::newton_failure_reason;
+  using internal::norm_of;
+  using internal::stagnated_why;
+
+
+  // Adaptive refinement: the Kelly indicator of the displacement, weighted
+  // to the energy norm of each cell's material, marks a fixed fraction of
+  // the cells; the active contact zone is always refined. The converged
+  // state and the state at the start of the step (displacements, and the
+  // multipliers as a nodal field on the slave surface) are interpolated to
+  // the new mesh.
+  template <int dim>
+  bool
+  Simulation<dim>::adapt_mesh(const double time, const double step_start_time)
+  {
+    const auto &a = parameters.adaptivity;
+    if (maximum_level == 0)
+      maximum_level = a.maximum_level > 0 ?
+                        a.maximum_level :
+                        triangulation.n_global_levels() - 1 + a.cycles;
+    update_solution();
+    // Vectors in the displacement layout: u and the multiplier field, now
+    // and at the step start.
+    std::vector<TrilinosWrappers::MPI::Vector> old_vectors;
+    unsigned int n_refine = 0, n_coarsen = 0;
+    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector>
+      transfer(dof_handler);
+    {
+      TimerOutput::Scope t(timer, "adaptation");
+      Vector<float>      indicator(triangulation.n_active_cells());
+      KellyErrorEstimator<dim>::estimate(dof_handler,
+                                         QGauss<dim - 1>(fe.degree + 1),
+                                         {},
+                                         solution,
+                                         indicator);
+      // Energy norm: sqrt(E) of the cell's material (bodies of different
+      // stiffness), and sqrt(r) in axisymmetry (the 2 pi r weight).
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            double w =
+              materials.at(cell->material_id())->representative_modulus();
+            if (parameters.axisymmetric)
+              w *= std::max(cell->center()[0], cell->diameter());
+            indicator[cell->active_cell_index()] *= std::sqrt(w);
+          }
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+        triangulation, indicator, a.refinement_fraction, a.coarsening_fraction);
+      if (a.refine_contact_zone && contact->active())
+        for (const auto &cell : contact->contact_zone_cells())
+          {
+            cell->clear_coarsen_flag();
+            cell->set_refine_flag();
+          }
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            if (cell->refine_flag_set() &&
+                static_cast<unsigned int>(cell->level()) >= maximum_level)
+              cell->clear_refine_flag();
+            n_refine += cell->refine_flag_set() ? 1 : 0;
+            n_coarsen += cell->coarsen_flag_set() ? 1 : 0;
+          }
+      n_refine  = Utilities::MPI::sum(n_refine, mpi_communicator);
+      n_coarsen = Utilities::MPI::sum(n_coarsen, mpi_communicator);
+      if (n_refine + n_coarsen == 0)
+        {
+          pcout << "  adaptive refinement: no cell marked (all at 'Maximum "
+                   "level'?)"
+                << std::endl;
+          return false;
+        }
+
+      for (const auto *source : {&state, &state_step_start})
+        {
+          TrilinosWrappers::MPI::Vector u(locally_owned, mpi_communicator);
+          TrilinosWrappers::MPI::Vector m(locally_owned, mpi_communicator);
+          for (const auto i : locally_owned)
+            u[i] = (*source)[i];
+          u.compress(VectorOperation::insert);
+          if (contact->active())
+            contact->multipliers_to_field(*source, m);
+          for (const auto *v : {&u, &m})
+            {
+              old_vectors.emplace_back(locally_owned,
+                                       locally_relevant,
+                                       mpi_communicator);
+              old_vectors.back() = *v;
+            }
+        }
+      std::vector<const TrilinosWrappers::MPI::Vector *> pointers;
+      for (const auto &v : old_vectors)
+        pointers.push_back(&v);
+      triangulation.prepare_coarsening_and_refinement();
+      check_adapted_size();
+      transfer.prepare_for_coarsening_and_refinement(pointers);
+      triangulation.execute_coarsening_and_refinement();
+    }
+    setup_system();
+    TimerOutput::Scope t(timer, "adaptation");
+    std::vector<TrilinosWrappers::MPI::Vector> new_vectors(
+      old_vectors.size(),
+      TrilinosWrappers::MPI::Vector(locally_owned, mpi_communicator));
+    std::vector<TrilinosWrappers::MPI::Vector *> pointers;
+    for (auto &v : new_vectors)
+      pointers.push_back(&v);
+    transfer.interpolate(pointers);
+    for (auto &v : new_vectors)
+      constraints_hanging.distribute(v);
+
+    // Back into the system layout, with the constraint values of each time.
+    for (unsigned int k = 0; k < 2; ++k)
+      {
+        TrilinosWrappers::MPI::Vector s(owned_system, mpi_communicator);
+        for (const auto i : locally_owned)
+          s[i] = new_vectors[2 * k][i];
+        s.compress(VectorOperation::insert);
+        if (contact->active())
+          {
+            TrilinosWrappers::MPI::Vector m(locally_owned,
+                                            locally_relevant,
+                                            mpi_communicator);
+            m = new_vectors[2 * k + 1];
+            contact->multipliers_from_field(m, s);
+          }
+        make_constraints(k == 0 ? time : step_start_time);
+        constraints_values.distribute(s);
+        (k == 0 ? state : state_step_start) = s;
+      }
+    update_solution();
+    pcout << "  adaptive refinement: " << n_refine << " cells refined, "
+          << n_coarsen << " coarsened -> "
+          << triangulation.n_global_active_cells() << " cells, "
+          << dof_handler.n_dofs() << " displacement DoFs";
+    if (contact->active())
+      pcout << ", " << contact->n_lambda_dofs() << " lambda, "
+            << contact->n_friction_dofs() << " Lambda";
+    pcout << std::endl;
+    return true;
+  }
+
+
+  // The refinement flagged by adapt_mesh() (prepared) must stay within
+  // 'Geometry/Maximum number of cells'; found during the run, so a RunError.
+  template <int dim>
+  void
+  Simulation<dim>::check_adapted_size() const
+  {
+    const double n_cells = Geometry::cells_after_refinement(triangulation);
+    if (n_cells > parameters.geometry.maximum_cells)
+      throw RunError(
+        "adaptive refinement: the next cycle would make " +
+        Geometry::cell_estimate_text(n_cells, parameters) +
+        ". The results of the completed steps are in '" +
+        parameters.output.directory +
+        "'. Lower 'Adaptive refinement/Cycles' or 'Refinement fraction', "
+        "set its 'Maximum level', or raise 'Geometry/Maximum number of "
+        "cells' if the machine has the memory.");
+  }
+
+
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace Signorini

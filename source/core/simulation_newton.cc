@@ -1,0 +1,876 @@
+// Load steps and the generalised Newton method: the solve of one step, the
+// Newton loop with its convergence rules, line search, failure reports, the
+// Jacobian check.
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/dofs/dof_renumbering.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <signorini/core/input_checks.h>
+#include <signorini/core/simulation.h>
+
+#include "simulation_helpers.h"
+
+#include <algorithm>
+#include <signorini/geometry/mesh_checks.h>
+#include <signorini/geometry/scene.h>
+#include <signorini/material/projected_volumetric_strain.h>
+#include <signorini/postprocess/contact_checks.h>
+#include <signorini/postprocess/format.h>
+#include <signorini/postprocess/stress_postprocessor.h>
+#include <signorini/solver/roundoff.h>
+
+#include <cmath>
+#include <chrono>
+#include <filesystem>
+#include <unistd.h>
+#include <fstream>
+#include <iomanip>
+#include <functional>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace Signorini
+{
+  using Postprocess::format;
+  using internal::exact_why;
+  using internal::floor_line;
+  using internal::make_function;
+  using internal::newton_failure_reason;
+  using internal::norm_of;
+  using internal::stagnated_why;
+
+
+  // One load step (formulation.md 7): Dirichlet values of the new time on
+  // the iterate, then the geometric loop (pairing, Newton) with contact, or
+  // Newton alone without.
+  template <int dim>
+  bool
+  Simulation<dim>::solve_load_step(const double  time,
+                                   const double  step_start_time,
+                                   unsigned int &iterations,
+                                   const bool    resume)
+  {
+    history_time      = time;
+    history_geometric = 0;
+    pairing_step_start_time = step_start_time;
+    force_scale       = 0;
+    make_constraints(time);
+    for (auto &f : neumann_functions)
+      f->set_time(time);
+    body_force->set_time(time);
+    // resume (after mesh adaptation): state_step_start is kept and the
+    // first iterate is the state as it is, with this step's Dirichlet
+    // values.
+    if (!resume)
+      state_step_start = state;
+    {
+      // Extrapolated predictor: the last converged increment, scaled to
+      // this step's size; Dirichlet values then override their entries.
+      // One insert per entry: an add after an insert would leave the ranks
+      // with and without DoFs in different compress modes (a deadlock).
+      const double factor =
+        !resume && parameters.load_stepping.extrapolate && last_step_size > 0 ?
+          (time - step_start_time) / last_step_size :
+          0.;
+      TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
+      for (const auto i : owned_system)
+        owned[i] = factor != 0 ? state[i] + factor * last_increment[i] :
+                                 static_cast<double>(state[i]);
+      owned.compress(VectorOperation::insert);
+      constraints_values.distribute(owned);
+      state = owned;
+    }
+    update_solution();
+    iterations = 0;
+    if (!contact->active())
+      return newton(iterations);
+
+    const auto &c       = parameters.contact;
+    const bool  verbose = parameters.output.verbosity != Verbosity::quiet;
+    contact->start_geometric_loop();
+    for (unsigned int g = 1; g <= c.max_geometric_iterations; ++g)
+      {
+        history_geometric = g;
+        {
+          TimerOutput::Scope t(timer, "pairing");
+          contact->pair(state, time, step_start_time);
+          if (const unsigned int n = contact->deep_points(); n > 0)
+            pcout << "    pairing: " << n
+                  << " slave point(s) deep inside the master body, paired "
+                     "from the penetrated side"
+                  << std::endl;
+          if (const unsigned int n = contact->newly_pinned(); n > 0)
+            {
+              cycle_detections += n;
+              points_frozen += n;
+              pcout << "    geometric loop: " << n
+                    << " point(s) back on their master face of two pairings"
+                       " before: pinned to it for the rest of the step"
+                    << std::endl;
+            }
+          if (first_pairing)
+            {
+              TrilinosWrappers::MPI::Vector owned(owned_system,
+                                                  mpi_communicator);
+              owned = state;
+              contact->set_initial_multipliers(state, owned);
+              // Hanging and excluded multipliers follow their constraint
+              // lines from the start: Newton updates are distributed with
+              // homogeneous lines, so a start off the lines would stay off.
+              constraints_values.distribute(owned);
+              state         = owned;
+              first_pairing = false;
+            }
+        }
+        {
+          TimerOutput::Scope t(timer, "sparsity");
+          make_sparsity();
+        }
+        state_at_pairing = state;
+        unsigned int its = 0;
+        // A pairing that will change is not worth the last quadratic
+        // iterations: hand over at 'Tolerance between pairings' (not in
+        // the last allowed geometric iteration, nor when a new pairing
+        // cannot change the equations).
+        const double handover =
+          g < c.max_geometric_iterations && !contact->pairing_is_exact() ?
+            parameters.newton.tolerance_between_pairings :
+            0.;
+        const bool ok = newton(its, handover);
+        iterations += its;
+        if (!ok)
+          return false;
+        // Rigid obstacles projected at every iterate: nothing to re-pair.
+        if (contact->pairing_is_exact())
+          return true;
+        // Largest displacement change since the pairing against the step's
+        // increment (code_aster's criterion, formulation.md 7.3).
+        double change = 0, increment = 0;
+        for (const auto i : locally_owned)
+          {
+            change =
+              std::max(change, std::abs(state[i] - state_at_pairing[i]));
+            increment = std::max(increment,
+                                 std::abs(state[i] - state_step_start[i]));
+          }
+        change    = Utilities::MPI::max(change, mpi_communicator);
+        increment = Utilities::MPI::max(increment, mpi_communicator);
+        const double ratio = increment > 0 ? change / increment : 0.;
+        if (verbose)
+          pcout << "    geometric iteration " << g
+                << ": change/increment = " << std::scientific
+                << std::setprecision(2) << ratio << std::defaultfloat
+                << std::endl;
+        if (ratio <= c.geometric_tolerance)
+          {
+            // The pairing stays: finish the solve at 'Relative tolerance',
+            // unless its last step was exact (linear equations at settled
+            // statuses, direct solve) and left a residual above it: a
+            // further solve would only stir the round-off.
+            const bool at_floor =
+              handover > 0 && exact_at_end &&
+              residual_at_end > parameters.newton.relative_tolerance;
+            if (at_floor)
+              pcout << floor_line(residual_at_end, floor_at_end, exact_why)
+                    << std::endl;
+            if (handover > 0 && !at_floor)
+              {
+                unsigned int more = 0;
+                const bool   done = newton(more);
+                iterations += more;
+                if (!done)
+                  return false;
+              }
+            if (contact_statistics.n_geometric_frozen > 0)
+              pcout << "    geometric loop converged with "
+                    << contact_statistics.n_geometric_frozen
+                    << " point(s) frozen by the geometric loop, "
+                    << contact_statistics.n_geometric_violated
+                    << " of them against the plain contact law" << std::endl;
+            return true;
+          }
+        // Anti-cycling across pairings: points back at their status of two
+        // pairings before keep one status for the rest of the step.
+        if (const unsigned int n = contact->end_geometric_iteration(g); n > 0)
+          {
+            cycle_detections += n;
+            points_frozen += n;
+            pcout << "    geometric loop: " << n
+                  << " point(s) back at their status of two pairings before:"
+                     " status frozen for the rest of the step"
+                  << std::endl;
+          }
+      }
+    newton_failure_kind = NewtonFailure::geometric;
+    newton_failure      = "the geometric loop did not converge in " +
+                     std::to_string(c.max_geometric_iterations) +
+                     " pairings ('Contact/Maximum geometric iterations')";
+    return false;
+  }
+
+
+  // Generalised Newton (formulation.md 7.2): statuses are recomputed at
+  // every iterate; converged when every block residual is small AND no
+  // status changed since the previous iterate.
+  template <int dim>
+  bool
+  Simulation<dim>::newton(unsigned int &iterations, const double tolerance)
+  {
+    const bool verbose = parameters.output.verbosity == Verbosity::verbose;
+    const bool show_contact =
+      contact->active() && parameters.output.verbosity != Verbosity::quiet;
+    double residual_before = 0;
+    bool   settled_before = false;
+    // The iterate is the result of an exact Newton step: a direct solve,
+    // the full update, with the statuses of its evaluation (no early
+    // release, no frozen point released without a solve).
+    bool step_exact = false;
+    // Line search: the last solve's base, update and residual, tried at
+    // the next evaluation.
+    bool                          line_search_pending = false;
+    TrilinosWrappers::MPI::Vector search_base, search_update;
+    double                        search_residual = 0;
+    exact_at_end    = false;
+    std::vector<double> residuals; // relative, per iterate (failure reason)
+    for (iterations = 0; iterations <= parameters.newton.max_iterations;
+         ++iterations)
+      {
+        // Residual first; the matrix only if a solve follows, so the
+        // converged check does not pay for a matrix assembly.
+        // rho_t follows the pressure level once per Newton solve: changing
+        // it between iterates would change the equations being solved and
+        // spoil the quadratic convergence.
+        if (contact->active() && iterations == 0)
+          {
+            contact->update_coefficients(state);
+            contact->start_newton_solve();
+          }
+        // A status change at this iterate means another solve: with
+        // 'Pairing at status changes', pair at this iterate first and
+        // evaluate it again, so that the pairing follows the active-set
+        // search (the first evaluation is undone: the statuses of the
+        // last solve stay the reference of the status history).
+        const bool pair_here = contact->active() && iterations >= 1 &&
+                               contact->pairing_within_newton();
+        // Line search (Newton/Line search steps): the full update of the
+        // last solve is this iterate. Its evaluation is the trial of the
+        // full step, so an accepted full step costs no extra assembly;
+        // when it made the residual grow, the evaluation is undone and
+        // the fractions are tried (line_search()).
+        const bool search = line_search_pending;
+        line_search_pending = false;
+        const auto saved_points =
+          pair_here || search ? contact->save_points() : nullptr;
+        assemble(false);
+        if (search)
+          {
+            const double r_full = norm_of(block_residuals());
+            if (r_full > (1 - 1e-4) * search_residual)
+              {
+                contact->restore_points(*saved_points);
+                const double alpha = line_search(search_base,
+                                                 search_update,
+                                                 search_residual,
+                                                 r_full);
+                if (alpha < 1)
+                  step_exact = false;
+                TrilinosWrappers::MPI::Vector owned = search_base;
+                owned.add(alpha, search_update);
+                state = owned;
+                update_solution();
+                assemble(false);
+              }
+          }
+        bool paired_here = false;
+        if (pair_here && contact_statistics.n_changed > 0)
+          {
+            {
+              TimerOutput::Scope t(timer, "pairing");
+              contact->restore_points(*saved_points);
+              contact->pair(state,
+                            history_time,
+                            pairing_step_start_time,
+                            true);
+              make_sparsity();
+            }
+            assemble(false);
+            state_at_pairing = state;
+            paired_here      = true;
+          }
+        const auto   block = block_residuals();
+        const double residual = norm_of(block);
+        // The force level of the load step so far: the largest internal
+        // and external force of its iterates. Not the residual: its
+        // multiplier rows (scaled by rho_n) hold rho_n times the initial
+        // gaps at a 'closed' start, and its displacement rows rho_n times
+        // the gap of a point that just closed, so a level taken from it
+        // (and every relative tolerance) depended on the Normal
+        // coefficient (c_n = 1e6: a level 1e6 times the load). The
+        // maximum over the step: in a later geometric iteration of a
+        // stress-free step (open contact, rigid motion) the forces are
+        // round-off and must not become the scale.
+        force_scale = std::max({force_scale,
+                                internal_force.l2_norm(),
+                                external_force.l2_norm()});
+        const double relative_tolerance =
+          tolerance > 0 ? std::max(tolerance,
+                                   parameters.newton.relative_tolerance) :
+                          parameters.newton.relative_tolerance;
+        const auto small = [&](const double r) {
+          return r <= parameters.newton.absolute_tolerance ||
+                 r <= relative_tolerance * force_scale;
+        };
+        // Round-off floor (doc/robustness.md, "Round-off floor computed"):
+        // the residual cannot go below the round-off of its terms: eps
+        // || |K| |x| || for the internal force and the linear contact
+        // terms (large where the terms cancel: a rigid motion, a stiffness
+        // contrast; Solver::absolute_product_norm() with the last Jacobian
+        // and the state it was assembled at: the scale changes little from
+        // one iterate to the next, and at the first iterate of a pairing
+        // the matrix is not assembled yet), and eps rho_n |x| for the
+        // gaps, which are differences of positions (large for large
+        // coefficients c_n; ContactProblem::roundoff_scale()). An iterate
+        // at or below 10 eps times that scale is accepted once the
+        // statuses have settled
+        // and Newton can do no more: its last step no longer halved the
+        // residual (stagnation), or it was an exact step of equations
+        // linear at fixed statuses (a direct solve, the full update;
+        // contact->linear_at_fixed_statuses(), and every material says
+        // is_linear()),
+        // after which what is left is round-off. A Newton that still
+        // contracts, or one that stalls above round-off (a Jacobian that is
+        // not the derivative of the residual), is never accepted here.
+        constexpr double floor_factor =
+          10 * std::numeric_limits<double>::epsilon();
+        const double bulk_floor = floor_factor * matrix_roundoff;
+        const double contact_floor =
+          contact->active() ? floor_factor * contact->roundoff_scale() : 0.;
+        const double roundoff_floor = std::hypot(bulk_floor, contact_floor);
+        const bool statuses_settled =
+          !contact->active() || contact_statistics.n_changed == 0;
+        const bool stagnated = iterations >= 1 && statuses_settled &&
+                               settled_before &&
+                               residual > 0.5 * residual_before;
+        settled_before  = statuses_settled;
+        residual_before = residual;
+        const bool exact_step =
+          step_exact && statuses_settled && materials_linear &&
+          (!contact->active() || contact->linear_at_fixed_statuses());
+        const bool at_floor =
+          residual <= roundoff_floor && (stagnated || exact_step);
+        const bool at_exact_floor = at_floor && exact_step;
+        // A force level near zero (a body moving rigidly without touching
+        // anything): the displacement rows at the round-off of the
+        // internal force are as small as they get, at any iterate (the
+        // rigid motion of a predictor), and relative to a force level that
+        // is itself round-off they stay near 1e-2.
+        const bool below_tolerance =
+          (small(block[0]) || block[0] <= bulk_floor) && small(block[1]) &&
+          small(block[2]);
+        const bool residual_small = below_tolerance || at_floor;
+        if (below_tolerance && !small(block[0]) &&
+            parameters.output.verbosity != Verbosity::quiet)
+          pcout << "    residual at the round-off of the displacement (the "
+                   "force level is near zero: a rigid motion): accepted"
+                << std::endl;
+        if (at_floor && !below_tolerance)
+          pcout << floor_line(residual / force_scale,
+                              roundoff_floor / force_scale,
+                              exact_step ? exact_why : stagnated_why)
+                << std::endl;
+        // A frozen point (anti-cycling) that the plain law contradicts at
+        // the converged iterate is released; Newton goes on from there.
+        const bool release = residual_small && statuses_settled &&
+                             contact->active() &&
+                             contact_statistics.n_violated > 0;
+        const bool converged = residual_small && statuses_settled && !release;
+        cycle_detections += contact->active() ? contact_statistics.n_cycling : 0;
+        points_frozen += contact->active() ? contact_statistics.n_newly_frozen : 0;
+        const auto relative = [&](const double r) {
+          return force_scale > 0 ? r / force_scale : 0.;
+        };
+        // Printed: above 1e6 the force level is the round-off of a
+        // stress-free state (a body moving freely before contact), and the
+        // digits of the ratio are round-off too.
+        const auto shown = [&](const double r) {
+          std::ostringstream text;
+          if (!std::isfinite(r) || !std::isfinite(force_scale))
+            text << (std::isnan(r) || std::isnan(force_scale) ? "NaN" :
+                                                                 "inf");
+          else if (relative(r) > 1e6)
+            text << ">1.0e+06";
+          else
+            text << std::scientific << std::setprecision(2) << relative(r);
+          return text.str();
+        };
+        if (show_contact)
+          {
+            const auto &st = contact_statistics;
+            pcout << "    Newton " << std::setw(2) << iterations
+                  << ": |R_u| " << shown(block[0]) << " |R_lambda| "
+                  << shown(block[1]);
+            if (contact->n_friction_dofs() > 0)
+              pcout << " |R_Lambda| " << shown(block[2]);
+            pcout << std::defaultfloat << "  contact " << st.n_contact;
+            if (contact->n_friction_dofs() > 0)
+              pcout << " (stick " << st.n_stick << ", slip " << st.n_slip
+                    << ")";
+            pcout << " free " << st.n_points - st.n_contact << " changed "
+                  << st.n_changed;
+            if (st.n_reversed > 0)
+              pcout << " (slip reversed " << st.n_reversed << ")";
+            if (st.n_cycling > 0)
+              pcout << " cycling " << st.n_cycling;
+            if (st.n_frozen + st.n_newly_frozen > 0)
+              pcout << " frozen " << st.n_frozen + st.n_newly_frozen;
+            pcout << (paired_here ? "  (paired again)" : "")
+                  << (converged ? "  converged" : "") << std::endl;
+          }
+        else if (verbose)
+          pcout << "    Newton " << std::setw(2) << iterations
+                << ": |R|/|F| = " << std::scientific << std::setprecision(2)
+                << relative(residual) << std::defaultfloat
+                << (converged ? "  converged" : "") << std::endl;
+        {
+          const auto &       st = contact_statistics;
+          std::ostringstream row;
+          row << history_step << "," << format(history_time) << ","
+              << history_geometric << "," << iterations << ","
+              << format(relative(block[0]), 3) << ","
+              << format(relative(block[1]), 3) << ","
+              << format(relative(block[2]), 3);
+          if (contact->active())
+            row << "," << st.n_contact << "," << st.n_stick << ","
+                << st.n_slip << "," << st.n_changed << "," << st.n_reversed
+                << "," << st.n_cycling << "," << st.n_frozen + st.n_newly_frozen;
+          else
+            row << ",0,0,0,0,0,0,0";
+          row << "," << (converged ? 1 : 0);
+          newton_rows.push_back(row.str());
+        }
+        if (!std::isfinite(residual))
+          {
+            newton_failure_kind = NewtonFailure::non_finite;
+            newton_failure =
+              "the residual is not finite (" + format(residual, 2) +
+              ") at Newton iterate " + std::to_string(iterations) +
+              non_finite_loads(history_time);
+            return false;
+          }
+        residuals.push_back(relative(residual));
+        if (parameters.newton.check_jacobian && contact->active())
+          check_jacobian();
+        if (converged)
+          {
+            exact_at_end      = at_exact_floor;
+            residual_at_end   = relative(residual);
+            floor_at_end      = relative(roundoff_floor);
+            return true;
+          }
+        if (iterations == parameters.newton.max_iterations)
+          break;
+        step_exact = false;
+        if (release)
+          {
+            unsigned int       refrozen = 0;
+            const unsigned int n        = contact->release_frozen(refrozen);
+            points_released += n;
+            points_frozen += refrozen;
+            if (show_contact)
+              {
+                pcout << "    frozen point(s) that the contact law "
+                         "contradicts: "
+                      << n << " released";
+                if (refrozen > 0)
+                  pcout << ", " << refrozen
+                        << " frozen again in the friction status the law "
+                           "asks for";
+                pcout << std::endl;
+              }
+            continue; // re-evaluate the same iterate
+          }
+
+        // Release extrapolation (a shrinking contact zone): the points
+        // released early stay open for this solve only.
+        unsigned int n_early = 0;
+        if (contact->active() && iterations >= 1)
+          if (const unsigned int n = contact->extrapolate_releases(); n > 0)
+            {
+              n_early = n;
+              early_releases += n;
+              if (show_contact)
+                pcout << "    release extrapolation: " << n
+                      << " point(s) opened for this solve" << std::endl;
+            }
+        assemble(true);
+        if (contact->active())
+          contact->clear_releases();
+        matrix_roundoff =
+          Solver::absolute_product_norm(system_matrix, state, mpi_communicator);
+        hold_free_motions(iterations);
+        TimerOutput::Scope t(timer, "linear solve");
+        TrilinosWrappers::MPI::Vector update(owned_system, mpi_communicator);
+        const unsigned int krylov =
+          linear_solver->solve(system_matrix, update, newton_rhs);
+        krylov_iterations += krylov;
+        krylov_max = std::max(krylov_max, krylov);
+        constraints_update.distribute(update);
+        TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
+        owned = state;
+        if (parameters.newton.line_search_steps > 0 && contact->active())
+          {
+            line_search_pending = true;
+            search_base         = owned;
+            search_update       = update;
+            search_residual     = residual;
+          }
+        owned.add(1., update);
+        state = owned;
+        update_solution();
+        step_exact = krylov == 0 && n_early == 0;
+      }
+    std::tie(newton_failure_kind, newton_failure) =
+      newton_failure_reason(residuals,
+                            contact->active() ? contact_statistics.n_changed :
+                                                0,
+                            free_motions,
+                            parameters.newton.max_iterations);
+    return false;
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::hold_free_motions(const unsigned int iteration)
+  {
+    free_motions.clear();
+    const auto free = rigid_modes.find(system_matrix, dof_handler.n_dofs());
+    if (free.empty())
+      return;
+    std::string list;
+    for (const auto &m : free)
+      list += (list.empty() ? "" : "; ") + rigid_modes.describe(m);
+    // Friction can hold the motion once its points have a threshold: at
+    // the first iterate after they close it is zero (formulation.md 3.3),
+    // and while every point slips there is no tangential stiffness. The
+    // motion's share of the update is then set to zero for this solve.
+    const bool friction_may_hold = contact->active() &&
+                                   contact->n_friction_dofs() > 0 &&
+                                   contact_statistics.n_contact > 0;
+    if (!friction_may_hold)
+      throw RunError(
+        "load step " + std::to_string(history_step) + ", Newton iterate " +
+        std::to_string(iteration) + ": nothing holds " + list +
+        " (no Dirichlet condition constrains it and no closed contact point "
+        "resists it), so the linear system is singular. Support the body "
+        "along that motion (a Dirichlet condition on that component, on one "
+        "node if the body must stay free otherwise: 'Boundary "
+        "conditions/Dirichlet k/Node'), drive it by a prescribed "
+        "displacement, or let it start in contact ('Contact/Initial status "
+        "= closed').");
+    rigid_modes.hold(system_matrix, dof_handler.n_dofs(), free);
+    free_motions = list;
+    if (parameters.output.verbosity != Verbosity::quiet)
+      pcout << "    held for this solve (friction without threshold or "
+               "slipping everywhere): "
+            << list << std::endl;
+  }
+
+
+  template <int dim>
+  std::string
+  Simulation<dim>::failure_advice() const
+  {
+    const std::string smaller =
+      parameters.load_stepping.explicit_times ?
+        "more times in 'Load stepping/Step times'" :
+        "more steps ('Load stepping/Number of steps')";
+    switch (newton_failure_kind)
+      {
+        case NewtonFailure::non_finite:
+          return newton_failure.find("is not finite at") != std::string::npos ?
+                   "Give a load expression that is finite over the load "
+                   "path." :
+                   "The loads are finite: the iterate diverged; try " +
+                     smaller + ".";
+        case NewtonFailure::stagnation:
+          return "Either the load has no equilibrium (check it against what "
+                 "the supports and friction can carry) or the iteration is "
+                 "stuck; " +
+                 smaller + " helps only in the second case.";
+        case NewtonFailure::geometric:
+          return "Raise 'Contact/Maximum geometric iterations' or use " +
+                 smaller + ".";
+        default:
+          return "Raise 'Newton/Maximum iterations' or use " + smaller + ".";
+      }
+  }
+
+
+  template <int dim>
+  std::string
+  Simulation<dim>::non_finite_loads(const double t) const
+  {
+    const auto &bc = parameters.boundary_conditions;
+    std::vector<std::pair<std::string, const FunctionParser<dim> *>> loads;
+    for (unsigned int k = 0; k < dirichlet_functions.size(); ++k)
+      loads.emplace_back("Dirichlet " + std::to_string(k + 1),
+                         dirichlet_functions[k].get());
+    for (unsigned int k = 0; k < neumann_functions.size(); ++k)
+      loads.emplace_back("Neumann " + std::to_string(k + 1),
+                         neumann_functions[k].get());
+    (void)bc;
+    std::string text;
+    for (const auto &[name, function] : loads)
+      {
+        // The first vertex of an owned cell where a component is not
+        // finite, reduced to the smallest rank that has one.
+        FunctionParser<dim> &f = const_cast<FunctionParser<dim> &>(*function);
+        const double         t_before = f.get_time();
+        f.set_time(t);
+        std::vector<double> where(dim + 1, std::numeric_limits<double>::max());
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() && where[0] == std::numeric_limits<double>::max())
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                bool finite = true;
+                for (unsigned int c = 0; c < f.n_components; ++c)
+                  finite = finite && std::isfinite(f.value(cell->vertex(v), c));
+                if (!finite)
+                  {
+                    where[0] = Utilities::MPI::this_mpi_process(mpi_communicator);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      where[d + 1] = cell->vertex(v)[d];
+                    break;
+                  }
+              }
+        f.set_time(t_before);
+        const auto all = Utilities::MPI::all_gather(mpi_communicator, where);
+        for (const auto &w : all)
+          if (w[0] != std::numeric_limits<double>::max())
+            {
+              text += "; subsection 'Boundary conditions/" + name +
+                      "', parameter 'Values' is not finite at t = " +
+                      format(t, 4) + ", x = (";
+              for (unsigned int d = 0; d < dim; ++d)
+                text += (d ? ", " : "") + format(w[d + 1], 4);
+              text += ")";
+              break;
+            }
+      }
+    return text;
+  }
+
+
+  template <int dim>
+  std::array<double, 3>
+  Simulation<dim>::block_residuals() const
+  {
+    const types::global_dof_index n_u = dof_handler.n_dofs();
+    const types::global_dof_index n_l =
+      contact->active() ? contact->n_lambda_dofs() : 0;
+    std::array<double, 3> block = {{0, 0, 0}};
+    for (const auto i : owned_system)
+      block[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)] +=
+        newton_rhs[i] * newton_rhs[i];
+    for (auto &b : block)
+      b = std::sqrt(Utilities::MPI::sum(b, mpi_communicator));
+    return block;
+  }
+
+
+  // Backtracking on the residual norm (Newton/Line search steps): the
+  // full update made the residual grow from @p residual_now to
+  // @p residual_full; try 1/2, 1/4, ... of it and return the first fraction
+  // that decreases the residual, else the one with the smallest residual
+  // (1 if no fraction beats the full update). Each trial is a residual
+  // evaluation with its own statuses, outside the status history; the
+  // contact points are left as they were on entry.
+  template <int dim>
+  double
+  Simulation<dim>::line_search(const TrilinosWrappers::MPI::Vector &base,
+                               const TrilinosWrappers::MPI::Vector &update,
+                               const double residual_now,
+                               const double residual_full)
+  {
+    TimerOutput::Scope t(timer, "line search");
+    const auto   saved            = contact->save_points();
+    const auto   saved_statistics = contact_statistics;
+    double       best = residual_full, best_alpha = 1, alpha = 1;
+    for (unsigned int k = 1; k <= parameters.newton.line_search_steps; ++k)
+      {
+        alpha *= 0.5;
+        TrilinosWrappers::MPI::Vector trial = base;
+        trial.add(alpha, update);
+        state = trial;
+        update_solution();
+        assemble(false, true);
+        const double r = norm_of(block_residuals());
+        if (r < best)
+          {
+            best       = r;
+            best_alpha = alpha;
+          }
+        if (r <= (1 - 1e-4 * alpha) * residual_now)
+          break;
+      }
+    contact->restore_points(*saved);
+    contact_statistics = saved_statistics;
+    if (best_alpha < 1)
+      {
+        ++line_searches;
+        if (parameters.output.verbosity != Verbosity::quiet)
+          pcout << "    line search: " << best_alpha
+                << " of the update (residual " << std::scientific
+                << std::setprecision(2) << residual_full / residual_now
+                << " -> " << best / residual_now << " of the current)"
+                << std::defaultfloat << std::endl;
+      }
+    return best_alpha;
+  }
+
+
+  // Development check (Newton/Check Jacobian): every column j of the
+  // assembled contact matrix K_c against the central difference
+  // -(r(x + h e_j) - r(x - h e_j)) / 2h of the contact part r = -R_c of the
+  // right-hand side, with the pairing fixed as in Newton. Columns whose
+  // perturbation flips a status straddle a kink and are skipped (counted).
+  template <int dim>
+  void
+  Simulation<dim>::check_jacobian()
+  {
+    const types::global_dof_index n_u = dof_handler.n_dofs();
+    const types::global_dof_index n_l = contact->n_lambda_dofs();
+    TrilinosWrappers::SparseMatrix K;
+    K.reinit(system_matrix);
+    K = 0;
+    // Right-hand sides with the writable off-rank entries of newton_rhs.
+    TrilinosWrappers::MPI::Vector r0 = newton_rhs, r_plus = newton_rhs,
+                                  r_minus = newton_rhs;
+    r0 = 0;
+    TrilinosWrappers::MPI::Vector column(owned_system, mpi_communicator),
+      unit(column);
+    TrilinosWrappers::MPI::Vector force = contact_force;
+    const auto saved_statistics = contact_statistics;
+    contact->assemble(state, state_step_start, constraints_update, &K, r0,
+                      force);
+    K.compress(VectorOperation::add);
+
+    // Step sizes: 1e-6 of the block's largest magnitude
+    double scale[3] = {0, 0, 0};
+    for (const auto i : owned_system)
+      {
+        double &s = scale[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)];
+        s         = std::max(s, std::abs(state[i]));
+      }
+    // and never below a floor (1e-6 of the mesh diameter, 1e-3 of the
+    // largest Young's modulus, a contact pressure level, and 1), so that a
+    // block that is zero up to round-off is not perturbed by round-off
+    // (with a floor of 1e-6 E, lambda = 0 after an open solve gave steps
+    // of 1e-12 E and central differences of round-off noise, 6e-5).
+    double E_max = 0;
+    for (const auto &[id, material] : materials)
+      E_max = std::max(E_max, material->representative_modulus());
+    const double floor[3] = {1e-6 * model_size,
+                             1e-3 * E_max,
+                             1.};
+    for (unsigned int b = 0; b < 3; ++b)
+      scale[b] = 1e-6 * std::max(Utilities::MPI::max(scale[b], mpi_communicator),
+                                 floor[b]);
+
+    // The base state with the owned layout, copied entry by entry: an
+    // assignment between vectors of different layouts may take a
+    // collective code path on some ranks only.
+    TrilinosWrappers::MPI::Vector base(owned_system, mpi_communicator);
+    for (const auto i : owned_system)
+      base[i] = state[i];
+    base.compress(VectorOperation::insert);
+    double       worst = 0;
+    unsigned int n_checked = 0, n_kinked = 0;
+    double       block_size[3] = {0, 0, 0};
+    std::vector<std::pair<unsigned int, double>> differences;
+    const auto   evaluate  = [&](const types::global_dof_index j,
+                              const double                  delta,
+                              TrilinosWrappers::MPI::Vector &r) {
+      TrilinosWrappers::MPI::Vector owned = base;
+      if (owned_system.is_element(j))
+        owned[j] += delta;
+      owned.compress(VectorOperation::insert);
+      state = owned;
+      r     = 0;
+      const auto st = contact->assemble(
+        state, state_step_start, constraints_update, nullptr, r, force);
+      r.compress(VectorOperation::add);
+      return st.n_changed;
+    };
+    for (const auto j : contact->coupled_dofs())
+      {
+        // Each rank knows the constraint lines of its relevant DoFs only;
+        // all ranks must take the same branch (collective calls follow).
+        if (Utilities::MPI::max(constraints_update.is_constrained(j) ? 1 : 0,
+                                mpi_communicator) > 0)
+          continue;
+        const unsigned int b = j < n_u ? 0 : (j < n_u + n_l ? 1 : 2);
+        unit = 0;
+        if (owned_system.is_element(j))
+          unit[j] = 1;
+        unit.compress(VectorOperation::insert);
+        K.vmult(column, unit);
+        // The block's size from every column, also those at a kink: when
+        // the few smooth columns of a block are zero up to round-off,
+        // their noise is not an error.
+        block_size[b] = std::max(block_size[b], column.linfty_norm());
+        const double h = scale[b];
+        const unsigned int flips =
+          evaluate(j, h, r_plus) + evaluate(j, -h, r_minus);
+        if (flips > 0)
+          {
+            ++n_kinked;
+            evaluate(j, 0, r_plus); // statuses back to the base state
+            continue;
+          }
+        r_plus -= r_minus;
+        r_plus *= -1. / (2 * h); // the finite-difference column
+        column -= r_plus;
+        differences.emplace_back(b, column.linfty_norm());
+      }
+    // Relative to the largest column of the same block (u, lambda,
+    // Lambda): a column that is zero up to round-off has a finite-
+    // difference column of pure noise, eps |r| / h, which must not count.
+    for (const auto &[b, d] : differences)
+      if (block_size[b] > 0)
+        {
+          worst = std::max(worst, d / block_size[b]);
+          ++n_checked;
+        }
+    // The displacement part 'solution' was never touched; restore the
+    // state and the statuses and statistics of the base state.
+    state = base;
+    r0 = 0;
+    contact->assemble(state, state_step_start, constraints_update, nullptr, r0,
+                      force);
+    contact_statistics = saved_statistics;
+    jacobian_error_max = std::max(jacobian_error_max, worst);
+    pcout << "      Jacobian check: " << n_checked << " columns, "
+          << n_kinked << " at a kink, max relative error " << std::scientific
+          << std::setprecision(1) << worst << std::defaultfloat << std::endl;
+  }
+
+
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace Signorini

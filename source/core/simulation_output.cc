@@ -1,0 +1,737 @@
+// Results: reactions, reference errors, VTU and CSV files, statistics, the
+// run summary.
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/dofs/dof_renumbering.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <signorini/core/input_checks.h>
+#include <signorini/core/simulation.h>
+
+#include "simulation_helpers.h"
+
+#include <algorithm>
+#include <signorini/geometry/mesh_checks.h>
+#include <signorini/geometry/scene.h>
+#include <signorini/material/projected_volumetric_strain.h>
+#include <signorini/postprocess/contact_checks.h>
+#include <signorini/postprocess/format.h>
+#include <signorini/postprocess/stress_postprocessor.h>
+#include <signorini/solver/roundoff.h>
+
+#include <cmath>
+#include <chrono>
+#include <filesystem>
+#include <unistd.h>
+#include <fstream>
+#include <iomanip>
+#include <functional>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace Signorini
+{
+  using Postprocess::format;
+  using internal::exact_why;
+  using internal::floor_line;
+  using internal::make_function;
+  using internal::newton_failure_reason;
+  using internal::norm_of;
+  using internal::stagnated_why;
+
+
+  // Reaction of the supports on the body: F_int - F_ext summed over the
+  // DoFs each Dirichlet condition constrains, per component [N].
+  template <int dim>
+  void
+  Simulation<dim>::compute_reactions()
+  {
+    // The residual R = F_int - F_ext + F_contact with the hanging-node
+    // constraints applied (a hanging DoF passes its share to its masters,
+    // some of which may carry a Dirichlet condition): at the Dirichlet DoFs
+    // it is the force of the supports.
+    {
+      TrilinosWrappers::MPI::Vector r;
+      r.reinit(locally_owned, locally_relevant, mpi_communicator, true);
+      for (const auto i : locally_owned)
+        {
+          const double raw =
+            internal_force[i] - external_force[i] + contact_force[i];
+          const auto *entries = constraints_hanging.get_constraint_entries(i);
+          if (entries && !entries->empty())
+            for (const auto &[j, w] : *entries)
+              r(j) += w * raw; // hanging: to the masters
+          else
+            r(i) += raw;
+        }
+      r.compress(VectorOperation::add);
+      support_force.reinit(locally_owned, mpi_communicator);
+      support_force = r;
+    }
+    reactions.assign(dirichlet_dofs.size(), Tensor<1, dim>());
+    dirichlet_displacement.assign(dirichlet_dofs.size(), Tensor<1, dim>());
+    dirichlet_components.assign(dirichlet_dofs.size(), {});
+    for (unsigned int k = 0; k < dirichlet_dofs.size(); ++k)
+      {
+        Tensor<1, dim> count;
+        for (const auto &[dof, component] : dirichlet_dofs[k])
+          {
+            reactions[k][component] += support_force[dof];
+            dirichlet_displacement[k][component] += solution[dof];
+            count[component] += 1;
+          }
+        count = Utilities::MPI::sum(count, mpi_communicator);
+        dirichlet_displacement[k] =
+          Utilities::MPI::sum(dirichlet_displacement[k], mpi_communicator);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            dirichlet_components[k][d] = count[d] > 0;
+            if (count[d] > 0)
+              dirichlet_displacement[k][d] /= count[d];
+          }
+        // Round-off (relative to the force level) is printed as zero so the
+        // output does not depend on the number of MPI ranks.
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            reactions[k][d] =
+              Utilities::MPI::sum(reactions[k][d], mpi_communicator);
+            if (std::abs(reactions[k][d]) < 1e-12 * force_scale)
+              reactions[k][d] = 0;
+          }
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::compute_reference_errors(const double time)
+  {
+    const auto &ref = parameters.reference;
+    if (ref.displacement.empty() && ref.stress.empty())
+      return;
+    const QGauss<dim> quadrature(fe.degree + 2);
+    FEValues<dim>     fe_values(fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_quadrature_points | update_JxW_values);
+    const FEValuesExtractors::Vector displacement(0);
+    std::vector<Tensor<1, dim>>          u_h(quadrature.size());
+    std::vector<SymmetricTensor<2, dim>> eps_h(quadrature.size());
+    std::unique_ptr<FunctionParser<dim>> u_exact, s_exact;
+    const auto &constants = parameters.boundary_conditions.constants;
+    if (!ref.displacement.empty())
+      u_exact = make_function<dim>(ref.displacement,
+                                   constants,
+                                   "subsection 'Reference solution', "
+                                   "parameter 'Displacement'");
+    if (!ref.stress.empty())
+      s_exact = make_function<dim>(ref.stress,
+                                   constants,
+                                   "subsection 'Reference solution', "
+                                   "parameter 'Stress'");
+    if (u_exact)
+      u_exact->set_time(time);
+    if (s_exact)
+      s_exact->set_time(time);
+
+    // Projected volumetric strain: the stress with theta_bar.
+    Material::ProjectedVolumetricStrain<dim> projection(
+      fe, quadrature, parameters.axisymmetric);
+    Vector<double> local_u(fe.n_dofs_per_cell()), theta_bar;
+
+    double u_err2 = 0, u_norm2 = 0, s_err_max = 0, s_norm_max = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_values(solution, u_h);
+          fe_values[displacement].get_function_symmetric_gradients(solution,
+                                                                   eps_h);
+          if (s_exact && parameters.projected_volumetric_strain)
+            {
+              projection.reinit(fe_values);
+              cell->get_dof_values(solution, local_u);
+              projection.coefficients(local_u, theta_bar);
+            }
+          const auto &material = *materials.at(cell->material_id());
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const auto &x = fe_values.quadrature_point(q);
+              if (u_exact)
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const double ue = u_exact->value(x, d);
+                    u_err2 += std::pow(u_h[q][d] - ue, 2) * fe_values.JxW(q);
+                    u_norm2 += ue * ue * fe_values.JxW(q);
+                  }
+              if (s_exact)
+                {
+                  // Axisymmetric: the hoop strain u_r / r enters the trace.
+                  const double hoop =
+                    parameters.axisymmetric ? u_h[q][0] / x[0] : 0.;
+                  const double theta =
+                    parameters.projected_volumetric_strain ?
+                      projection.value(theta_bar, quadrature.point(q)) :
+                      0.;
+                  SymmetricTensor<2, 3> stress;
+                  material.evaluate(
+                    Bulk::point_strain<dim>(
+                      eps_h[q],
+                      hoop,
+                      parameters.projected_volumetric_strain ? &theta :
+                                                               nullptr),
+                    stress,
+                    nullptr);
+                  const auto s = Material::from_3d<dim>(stress);
+                  double     e2 = 0, n2 = 0;
+                  for (unsigned int i = 0; i < dim; ++i)
+                    for (unsigned int j = 0; j < dim; ++j)
+                      {
+                        const double se = s_exact->value(x, i * dim + j);
+                        e2 += std::pow(s[i][j] - se, 2);
+                        n2 += se * se;
+                      }
+                  s_err_max  = std::max(s_err_max, std::sqrt(e2));
+                  s_norm_max = std::max(s_norm_max, std::sqrt(n2));
+                }
+            }
+        }
+    u_err2     = Utilities::MPI::sum(u_err2, mpi_communicator);
+    u_norm2    = Utilities::MPI::sum(u_norm2, mpi_communicator);
+    s_err_max  = Utilities::MPI::max(s_err_max, mpi_communicator);
+    s_norm_max = Utilities::MPI::max(s_norm_max, mpi_communicator);
+    if (u_exact)
+      errors.displacement_l2_relative =
+        u_norm2 > 0 ? std::sqrt(u_err2 / u_norm2) : std::sqrt(u_err2);
+    if (s_exact)
+      errors.stress_max_relative =
+        s_norm_max > 0 ? s_err_max / s_norm_max : s_err_max;
+  }
+
+
+  // Displacement component at a point: the first locally owned cell that
+  // contains it (lowest rank wins).
+  template <int dim>
+  double
+  Simulation<dim>::point_value(const Point<dim> &p,
+                               const unsigned int component) const
+  {
+    const MappingQ1<dim> mapping;
+    double               value = 0;
+    bool                 found = false;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && !found)
+        {
+          if (!cell->bounding_box().point_inside(p, 1e-10))
+            continue;
+          Point<dim> unit;
+          try
+            {
+              unit = mapping.transform_real_to_unit_cell(cell, p);
+            }
+          catch (...)
+            {
+              continue;
+            }
+          if (!GeometryInfo<dim>::is_inside_unit_cell(unit, 1e-8))
+            continue;
+          const Quadrature<dim> q(GeometryInfo<dim>::project_to_unit_cell(unit));
+          FEValues<dim>     fv(mapping, fe, q, update_values);
+          fv.reinit(cell);
+          std::vector<Vector<double>> v(1, Vector<double>(dim));
+          fv.get_function_values(solution, v);
+          value = v[0][component];
+          found = true;
+        }
+    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int owner = Utilities::MPI::min(
+      found ? rank : std::numeric_limits<unsigned int>::max(),
+      mpi_communicator);
+    if (owner == std::numeric_limits<unsigned int>::max())
+      throw InputError("subsection 'Reference solution', parameter 'Point "
+                       "values': the point lies in no cell of the mesh. Give "
+                       "a point of a body.");
+    return Utilities::MPI::sum(rank == owner ? value : 0., mpi_communicator);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::output_results(const unsigned int step, const double time)
+  {
+    if (!parameters.output.write_vtu)
+      return;
+    TimerOutput::Scope t(timer, "output");
+    DoFHandler<dim>    scalar_dofs(triangulation); // contact fields
+    DataOut<dim>       data_out;
+    data_out.attach_dof_handler(dof_handler);
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation(dim,
+                     DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(solution,
+                             std::vector<std::string>(dim, "displacement"),
+                             DataOut<dim>::type_dof_data,
+                             interpretation);
+    Postprocess::StressPostprocessor<dim> stress(
+      materials,
+      parameters.axisymmetric,
+      parameters.projected_volumetric_strain ? &fe : nullptr,
+      &solution);
+    data_out.add_data_vector(solution, stress);
+    Vector<float> material_id(triangulation.n_active_cells());
+    Vector<float> subdomain(triangulation.n_active_cells());
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          material_id(cell->active_cell_index()) = cell->material_id();
+          subdomain(cell->active_cell_index()) = cell->subdomain_id();
+        }
+    data_out.add_data_vector(material_id, "material_id");
+    data_out.add_data_vector(subdomain, "subdomain");
+    // Contact fields at the slave nodes (zero elsewhere).
+    std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>> fields;
+    if (contact->active())
+      {
+        scalar_dofs.distribute_dofs(fe.base_element(0));
+        fields = contact->nodal_fields(scalar_dofs);
+        for (const auto &[name, vector] : fields)
+          data_out.add_data_vector(scalar_dofs, vector, name);
+      }
+    data_out.build_patches(fe.degree);
+    write_solution_files(data_out, step, time);
+  }
+
+
+  // The names of DataOut::write_vtu_with_pvtu_record(), which writes in
+  // place and leaves a truncated file behind a kill or a full disk: here
+  // every file goes through a temporary name, each rank's piece first,
+  // then (rank 0, once every piece is in place) the step's PVTU record,
+  // then the PVD list, which so names complete steps only.
+  template <int dim>
+  void
+  Simulation<dim>::write_solution_files(const DataOut<dim> &data_out,
+                                        const unsigned int  step,
+                                        const double        time)
+  {
+    const unsigned int rank =
+      Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int n_ranks =
+      Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const unsigned int digits =
+      Utilities::needed_digits(std::max(0, static_cast<int>(n_ranks) - 1));
+    const std::string stem = "solution_" + Utilities::int_to_string(step, 4);
+    const auto        piece = [&](const unsigned int r) {
+      return stem + "." + Utilities::int_to_string(r, digits) + ".vtu";
+    };
+    const std::string directory = parameters.output.directory + "/";
+    check_output(Postprocess::write_atomically(
+      directory + piece(rank),
+      [&](std::ostream &out) { data_out.write_vtu(out); }));
+    std::string failure;
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          pieces.push_back(piece(r));
+        failure = Postprocess::write_atomically(
+          directory + stem + ".pvtu",
+          [&](std::ostream &out) { data_out.write_pvtu_record(out, pieces); });
+        if (failure.empty())
+          {
+            pvtu_records.emplace_back(time, stem + ".pvtu");
+            failure = Postprocess::write_atomically(
+              directory + "solution.pvd", [&](std::ostream &out) {
+                DataOutBase::write_pvd_record(out, pvtu_records);
+              });
+          }
+      }
+    check_output(failure);
+  }
+
+
+  template <int dim>
+  std::string
+  Simulation<dim>::write_statistics(const unsigned int step,
+                                    const double       time,
+                                    const unsigned int newton_iterations)
+  {
+    // Largest displacement magnitude at the nodes.
+    double u_max = 0;
+    for (const auto i : locally_owned)
+      u_max = std::max(u_max, std::abs(solution[i]));
+    u_max = Utilities::MPI::max(u_max, mpi_communicator);
+
+    std::vector<std::string> row = {std::to_string(step),
+                                    format(time),
+                                    std::to_string(newton_iterations),
+                                    std::to_string(step_cuts),
+                                    std::to_string(cycle_detections),
+                                    std::to_string(points_frozen),
+                                    format(u_max)};
+    step_iterations.push_back(newton_iterations);
+    run_cuts += step_cuts;
+    run_cycles += cycle_detections;
+    run_frozen += points_frozen;
+    run_released += points_released;
+    run_line_searches += line_searches;
+    const char *axis[] = {"x", "y", "z"};
+    // Contact pair summaries, their forces with round-off (relative to the
+    // force level) set to zero so that output does not depend on the ranks.
+    auto summary = contact->active() ?
+                     contact->summary() :
+                     std::vector<typename Contact::ContactProblem<
+                       dim>::PairSummary>();
+    for (auto &s : summary)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (std::abs(s.force[d]) < 1e-10 * force_scale)
+          s.force[d] = 0;
+    const bool header = statistics_header.empty();
+    if (header)
+      statistics_header = {"step",
+                           "time",
+                           "newton_iterations",
+                           "step_cuts",
+                           "cycle_detections",
+                           "points_frozen",
+                           "max_abs_u"};
+    const auto add_text = [&](const std::string &name, std::string value) {
+      if (header)
+        statistics_header.push_back(name);
+      row.push_back(std::move(value));
+    };
+    const auto add = [&](const std::string &name, const double value) {
+      add_text(name, format(value));
+    };
+    // Force-displacement data: each Dirichlet condition's reaction and the
+    // mean displacement it prescribes (constrained components only), each
+    // contact pair's force on the slave, closed points and, for a rigid
+    // obstacle, its prescribed motion.
+    for (unsigned int k = 0; k < reactions.size(); ++k)
+      {
+        const std::string name = "_" + std::to_string(k + 1) + "_";
+        for (unsigned int d = 0; d < dim; ++d)
+          add("reaction" + name + axis[d], reactions[k][d]);
+        for (unsigned int d = 0; d < dim; ++d)
+          if (dirichlet_components[k][d])
+            add("displacement" + name + axis[d], dirichlet_displacement[k][d]);
+      }
+    for (unsigned int p = 0; p < summary.size(); ++p)
+      {
+        const std::string name = "_" + std::to_string(p + 1) + "_";
+        for (unsigned int d = 0; d < dim; ++d)
+          add("contact_force" + name + axis[d], summary[p].force[d]);
+        add_text("contact_points" + name + "closed",
+                 std::to_string(summary[p].n_contact));
+        if (parameters.contact.pairs[p].friction > 0)
+          {
+            add_text("contact_points" + name + "stick",
+                     std::to_string(summary[p].n_stick));
+            add_text("contact_points" + name + "slip",
+                     std::to_string(summary[p].n_slip));
+          }
+        if (summary[p].rigid)
+          for (unsigned int d = 0; d < dim; ++d)
+            add("obstacle_displacement" + name + axis[d],
+                summary[p].obstacle_displacement[d]);
+      }
+    pcout << "  Newton iterations: " << newton_iterations << "\n";
+    if (parameters.linear_solver.type != LinearSolverType::direct)
+      {
+        pcout << "  Krylov iterations: " << krylov_iterations
+              << " in this step, at most " << krylov_max << " per solve\n";
+        krylov_iterations = krylov_max = 0;
+      }
+    if (cycle_detections + points_frozen + points_released > 0)
+      pcout << "  anti-cycling: " << cycle_detections
+            << " status cycle(s) detected, " << points_frozen
+            << " point(s) frozen, " << points_released << " released\n";
+    pcout << "  max |u_i| = " << format(u_max) << "\n";
+    // Components below 1e-10 of the largest reaction are round-off (sums of
+    // nodal forces that cancel; with nu -> 0.5 lambda amplifies the
+    // round-off of the displacement) and are printed as 0 (the CSV keeps
+    // them).
+    double largest_reaction = 0;
+    for (const auto &r : reactions)
+      largest_reaction = std::max(largest_reaction, r.norm());
+    for (unsigned int k = 0; k < reactions.size(); ++k)
+      {
+        pcout << "  reaction Dirichlet " << k + 1 << " = (";
+        for (unsigned int d = 0; d < dim; ++d)
+          pcout << (d ? ", " : "")
+                << format(std::abs(reactions[k][d]) <
+                              1e-10 * largest_reaction ?
+                            0. :
+                            reactions[k][d],
+                          4);
+        pcout << ")\n";
+      }
+    const auto &ref = parameters.reference;
+    // The step's reference checks, also kept for the end of a quiet run.
+    last_checks.clear();
+    const auto check_line = [&](const std::string &text, const bool pass) {
+      last_checks.push_back(text);
+      n_failed_checks += !pass;
+      pcout << "  reference check: " << text << "\n";
+    };
+    const auto report = [&](const char *what, const double e) {
+      if (e < 0)
+        return;
+      check_line(std::string(what) + " = " + format(std::max(e, 1e-16), 1) +
+                   " (tolerance " + format(ref.tolerance, 1) +
+                   "): " + (e <= ref.tolerance ? "PASS" : "FAIL"),
+                 e <= ref.tolerance);
+    };
+    report("displacement L2 relative error", errors.displacement_l2_relative);
+    report("stress max relative error", errors.stress_max_relative);
+    if (contact->active())
+      {
+        for (unsigned int p = 0; p < summary.size(); ++p)
+          {
+            const auto &s = summary[p];
+            pcout << "  contact pair " << p + 1 << ": " << s.n_contact
+                  << " of " << s.n_points << " points closed";
+            if (parameters.contact.pairs[p].friction > 0)
+              pcout << " (stick " << s.n_stick << ", slip " << s.n_slip
+                    << ")";
+            pcout << ", force on master = (";
+            for (unsigned int d = 0; d < dim; ++d)
+              pcout << (d ? ", " : "") << format(s.force[d], 4);
+            pcout << "), max p = " << format(s.p_max, 4) << "\n";
+            // An open pair near contact, or one whose points find no
+            // master face at all, is worth a word: bodies loaded towards
+            // each other that close no point pass through each other
+            // between the contact points (a coarse curved surface), or
+            // do not face each other (ids swapped, normals away).
+            if (s.n_contact == 0 && s.n_paired == 0)
+              pcout << "  note: pair " << p + 1
+                    << ": no slave point finds the master within 'Contact/"
+                       "Projection tolerance': the surfaces do not face each "
+                       "other here (check the slave and master ids and the "
+                       "geometry)\n";
+            else if (s.n_contact == 0 && -s.max_gap < 0.5 * s.face_size)
+              {
+                pcout << "  note: pair " << p + 1
+                      << " closes no contact point; the nearest is "
+                      << format(-s.max_gap, 2) << " m from the master ("
+                      << format(-s.max_gap / s.face_size, 2)
+                      << " slave faces): if the bodies should touch here, "
+                         "the slave points may straddle the contact (refine "
+                         "the slave surface, or make the finer surface the "
+                         "slave)\n";
+              }
+          }
+        for (const auto &check : contact_checks)
+          check_line(check.text, check.pass);
+      }
+    pcout << std::flush;
+
+    // statistics.csv starts with the header at the first completed step
+    // (its columns follow the scene's conditions and pairs).
+    const auto line = [](const std::vector<std::string> &fields) {
+      std::string text;
+      for (unsigned int c = 0; c < fields.size(); ++c)
+        text += (c ? "," : "") + fields[c];
+      return text + "\n";
+    };
+    return (header ? line(statistics_header) : std::string()) + line(row);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::append_newton_history()
+  {
+    // Every Newton iterate, including failed attempts before a step cut
+    // (their time is the cut step's target), residuals relative to the
+    // force scale as on screen.
+    std::string failure;
+    if (history_file.is_open())
+      {
+        std::string lines;
+        for (const auto &r : newton_rows)
+          lines += r + "\n";
+        failure = history_file.append(lines);
+      }
+    newton_rows.clear();
+    check_output(failure);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::append_statistics(const std::string &lines)
+  {
+    std::string failure;
+    if (parameters.output.write_csv &&
+        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      failure = statistics_file.is_open() ?
+                  statistics_file.append(lines) :
+                  statistics_file.open(parameters.output.directory +
+                                         "/statistics.csv",
+                                       lines);
+    check_output(failure);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::check_output(const std::string &failure) const
+  {
+    const std::string first =
+      Postprocess::first_failure(failure, mpi_communicator);
+    if (!first.empty())
+      throw RunError(first + ". The result files on disk are complete (up "
+                     "to the last step written); make room in '" +
+                     parameters.output.directory +
+                     "' or choose another 'Output/Directory'.");
+  }
+
+
+  // Results of an earlier run in the directory would be mixed with this
+  // run's (more steps, other ranks): this program's own result files are
+  // removed first, and said so. The echo never replaces the input file.
+  template <int dim>
+  void
+  Simulation<dim>::prepare_output()
+  {
+    const std::string &directory = parameters.output.directory;
+    std::string        failure;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::error_code error;
+        std::filesystem::create_directories(directory, error);
+        if (error)
+          failure = "cannot create the output directory '" + directory +
+                    "': " + error.message();
+        const unsigned int n_removed =
+          failure.empty() ?
+            Postprocess::remove_earlier_results(directory, failure) :
+            0;
+        if (n_removed > 0)
+          sout << "Removed " << n_removed
+               << " result file(s) of an earlier run from '" << directory
+               << "'" << std::endl;
+        const std::string echo =
+          Postprocess::echo_filename(directory, parameters.input_file);
+        if (echo != directory + "/parameters.prm")
+          sout << "Note: '" << directory
+               << "/parameters.prm' is the input file: the parameters are "
+                  "echoed to '"
+               << echo << "'" << std::endl;
+        if (failure.empty())
+          failure = Postprocess::write_atomically(echo, [&](std::ostream &out) {
+            prm.print_parameters(out, ParameterHandler::ShortPRM);
+          });
+        if (failure.empty() && parameters.output.write_csv)
+          failure = history_file.open(
+            directory + "/newton_history.csv",
+            "step,time,geometric_iteration,newton_iteration,r_u,r_lambda,"
+            "r_Lambda,n_contact,n_stick,n_slip,n_changed,n_reversed,"
+            "n_cycling,n_frozen,converged\n");
+      }
+    check_output(failure);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::write_step_results(const unsigned int step,
+                                      const double       time,
+                                      const unsigned int iterations)
+  {
+    compute_reactions();
+    compute_reference_errors(time);
+    if (contact->active())
+      contact_checks = contact_reference_checks.evaluate(
+        time,
+        *contact,
+        state,
+        force_scale,
+        [this](const Point<dim> &p, const unsigned int c) {
+          return point_value(p, c);
+        });
+    append_newton_history();
+    const std::string statistics_lines =
+      write_statistics(step, time, iterations);
+    output_results(step, time);
+    if (contact->active() && parameters.output.write_csv)
+      {
+        std::ostringstream name;
+        name << parameters.output.directory << "/contact_" << std::setw(4)
+             << std::setfill('0') << step << ".csv";
+        check_output(contact->write_csv(name.str()));
+      }
+    // The step's line in statistics.csv last: a step listed there has
+    // all its files on disk.
+    append_statistics(statistics_lines);
+    last_written_time = time;
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::print_run_summary(const unsigned int n_written,
+                                     const unsigned int stopped_in)
+  {
+    const unsigned int n_steps = parameters.load_stepping.step_times.size();
+    // What even a quiet run prints (sout): the last step's reference
+    // checks, the run summary, the Jacobian check, timing and memory.
+    if (parameters.output.verbosity == Verbosity::quiet && n_written > 0)
+      {
+        sout << (stopped_in > 0 ? "Last written step, t = " :
+                                  "Final step, t = ")
+             << format(last_written_time, 4) << "\n";
+        for (const auto &line : last_checks)
+          sout << "  reference check: " << line << "\n";
+      }
+    if ((n_steps > 1 || stopped_in > 0) && !step_iterations.empty())
+      {
+        // Newton iterations per load step (all geometric iterations and
+        // cut attempts of the step that converged): median and maximum.
+        // (Median of an even count: the mean of the two middle values.)
+        std::vector<unsigned int> sorted = step_iterations;
+        std::sort(sorted.begin(), sorted.end());
+        const std::size_t  m   = sorted.size();
+        const unsigned int sum = sorted[(m - 1) / 2] + sorted[m / 2];
+        sout << "Run summary";
+        if (stopped_in > 0)
+          sout << " (stopped in load step " << stopped_in << " of " << n_steps
+               << "): " << n_written << " load step(s) written";
+        else
+          sout << ": " << n_steps << " load steps";
+        sout << ", Newton iterations per step median " << sum / 2
+             << (sum % 2 ? ".5" : "") << ", max " << sorted.back()
+             << ", step cuts " << run_cuts;
+        if (contact->active())
+          sout << ", status cycles detected " << run_cycles
+               << ", points frozen " << run_frozen << ", released "
+               << run_released;
+        if (early_releases > 0)
+          sout << ", opened early (release extrapolation) "
+               << early_releases;
+        if (run_line_searches > 0)
+          sout << ", line searches " << run_line_searches;
+        sout << std::endl;
+      }
+    else if (stopped_in > 0)
+      sout << "Run summary (stopped in load step " << stopped_in << " of "
+           << n_steps << "): no load step written" << std::endl;
+  }
+
+
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace Signorini
