@@ -1,0 +1,580 @@
+// The parameters of the subsections Contact (with Pair k) and Reference
+// solution.
+#include <deal.II/base/utilities.h>
+
+#include <signorini/core/input_checks.h>
+#include <signorini/core/parameters.h>
+#include <signorini/contact/obstacles/interface.h>
+#include <signorini/material/interface.h>
+
+#include "parameters_helpers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <regex>
+#include <sstream>
+
+namespace Signorini
+{
+  using internal::component_index;
+  using internal::point_pattern;
+  using internal::to_doubles;
+  using internal::to_unsigned;
+
+  // ------------------------------------------------------ Reference solution
+  // --------------------------------------------------------------- Contact
+  void
+  ContactPairParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Slave boundary id",
+                      "",
+                      Patterns::List(Patterns::Integer(0, 255), 0),
+                      "Boundary id(s) of the slave surface (one body): the "
+                      "contact multipliers live on its nodes.");
+    Obstacles::declare_master_parameters(prm);
+    prm.declare_entry("Master boundary id",
+                      "",
+                      Patterns::List(Patterns::Integer(0, 255), 0),
+                      "Boundary id(s) of the master surface for Master = "
+                      "body.");
+    prm.declare_entry("Obstacle motion",
+                      "0; 0; 0",
+                      Patterns::Anything(),
+                      "Translation of a rigid obstacle from its position "
+                      "at t = 0, as Dimension "
+                      "expressions of t (and 'Function constants') "
+                      "separated by ';' [m].");
+    prm.declare_entry("Obstacle rotation",
+                      "0",
+                      Patterns::Anything(),
+                      "Rotation of a rigid obstacle from its position at "
+                      "t = 0 about 'Rotation centre', as expressions of t: "
+                      "in 2D the angle [rad] (counterclockwise), in 3D the "
+                      "rotation vector (axis times angle [rad], 3 "
+                      "expressions separated by ';'). 0: none.");
+    prm.declare_entry("Rotation centre",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Centre of 'Obstacle rotation' at t = 0 [m]; it moves "
+                      "with 'Obstacle motion'.");
+    prm.declare_entry("Friction coefficient",
+                      "0",
+                      Patterns::Double(0),
+                      "Coulomb coefficient mu [-]. 0: frictionless, and no "
+                      "friction unknowns are created.");
+    prm.declare_entry("Normal coefficient",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Dimensionless factor c_n of the normal augmentation "
+                      "rho_n = c_n E / h, with E the largest Young's modulus "
+                      "of the slave cells (or of the master cells when the "
+                      "master body is softer) and h the mean slave face "
+                      "size. It "
+                      "changes the convergence path, not the solution. With "
+                      "'Penalty = true' it scales the penalty stiffness.");
+    prm.declare_entry("Tangential coefficient",
+                      "1",
+                      Patterns::Double(1e-300),
+                      "Dimensionless factor c_t of the friction augmentation "
+                      "rho_t = c_t rho_n / (mu p_ref) [1/m], p_ref the RMS "
+                      "contact pressure of the closed slave nodes at the "
+                      "current iterate (1e-3 E before contact closes): a "
+                      "sticking point then has a tangential stiffness of "
+                      "about c_t rho_n. Like c_n it changes the convergence "
+                      "path, not the solution.");
+    prm.declare_entry("Gap offset",
+                      "0",
+                      Patterns::Double(),
+                      "Constant g_0 added to the gap [m] (g > 0 means "
+                      "interpenetration).");
+  }
+
+
+  void
+  ContactPairParameters::parse_parameters(ParameterHandler &prm)
+  {
+    slave_ids  = to_unsigned(prm.get("Slave boundary id"));
+    master_ids = to_unsigned(prm.get("Master boundary id"));
+    master          = prm.get("Master");
+    obstacle_motion   = split_expressions(prm.get("Obstacle motion"));
+    obstacle_rotation = split_expressions(prm.get("Obstacle rotation"));
+    rotation_centre   = to_doubles(prm.get("Rotation centre"));
+    friction        = prm.get_double("Friction coefficient");
+    rho_n_factor    = prm.get_double("Normal coefficient");
+    rho_t_factor    = prm.get_double("Tangential coefficient");
+    gap_offset      = prm.get_double("Gap offset");
+  }
+
+
+  void
+  ContactParameters::declare_parameters(ParameterHandler &prm,
+                                        const Counts &    counts)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry("Number of contact pairs",
+                      "0",
+                      Patterns::Integer(0, 64),
+                      "Number of subsections 'Pair k', k = 1..N. 0: no "
+                      "contact.");
+    prm.declare_entry("Integration rule",
+                      "mortar",
+                      Patterns::Selection(
+                        "nodal|gauss|simpson|newton-cotes|mortar"),
+                      "Contact points on the slave faces (formulation.md 6): "
+                      "nodal (the face nodes: trapezoid for Q1, Simpson for "
+                      "Q2), gauss (Gauss-Legendre with 'Integration order' "
+                      "points per direction), simpson (composite Simpson "
+                      "with 'Integration order' panels per direction), "
+                      "newton-cotes (closed Newton-Cotes of degree "
+                      "'Integration order' = 1, 2, 4 or 6), mortar "
+                      "(segment-based: each slave face cut by the master "
+                      "faces it overlaps, 'Segment order' points on every "
+                      "piece; passes the contact patch test on non-matching "
+                      "meshes).");
+    prm.declare_entry("Integration order",
+                      "2",
+                      Patterns::Integer(1, 12),
+                      "Order of the gauss, simpson or newton-cotes rule.");
+    prm.declare_entry("Segment order",
+                      "0",
+                      Patterns::Integer(0, 7),
+                      "Mortar rule: Gauss points per segment (2D) or points "
+                      "per direction of the triangle rule (3D), exact to "
+                      "degree 2n-1. 0: the smallest order that integrates "
+                      "psi x N^m exactly on flat faces (2D: degree+1, 3D: "
+                      "2 degree+1).");
+    prm.declare_entry("Normal",
+                      "master",
+                      Patterns::Selection("master|slave|average"),
+                      "Contact normal: the master normal at the projection "
+                      "(any rule), or the slave normal / the average of both "
+                      "(nodal rule only).");
+    prm.declare_entry("Initial status",
+                      "penetrating",
+                      Patterns::Selection("open|penetrating|closed"),
+                      "Status of the contact points at the first Newton "
+                      "iteration of the run: open, closed where penetrating "
+                      "or touching (g >= 0, to 1e-8 of the face size), or "
+                      "all closed (holds bodies that only "
+                      "contact supports; open points are released by "
+                      "Newton).");
+    prm.declare_entry("Statuses",
+                      "node",
+                      Patterns::Selection("point|node"),
+                      "Where the contact/free and the stick/slip statuses "
+                      "are decided with the integration-point rules (gauss, "
+                      "simpson, newton-cotes, mortar) on pairs with a meshed "
+                      "master: per multiplier node (node: active nodes close "
+                      "their weighted gap, free nodes carry lambda = 0; "
+                      "sticking nodes close their weighted slip, slipping "
+                      "nodes carry Lambda along it, free nodes Lambda = 0; "
+                      "the converged solution does not depend on the "
+                      "'Normal coefficient' nor on the 'Tangential "
+                      "coefficient', as with the nodal rule), or per "
+                      "contact point (point: the law of every integration "
+                      "point for itself, theory.md). Node needs 'Friction "
+                      "threshold = newton' on frictional pairs. The nodal "
+                      "rule and rigid obstacles have one law per node "
+                      "anyway.");
+    prm.declare_entry("Friction threshold",
+                      "newton",
+                      Patterns::Selection("newton|frozen"),
+                      "lambda_f = current lambda (newton, formulation.md 3.3) "
+                      "or lambda of the previous geometric iteration "
+                      "(frozen).");
+    prm.declare_entry("Geometric linearisation",
+                      "auto",
+                      Patterns::Selection("auto|fixed point|newton"),
+                      "Rigid obstacles: the projection, normal and tangents "
+                      "frozen within each geometric iteration (fixed point, "
+                      "formulation.md 7) or updated at every Newton iterate "
+                      "with their derivatives in the Jacobian (newton: the "
+                      "curvature of a ball or cylinder no longer costs "
+                      "geometric iterations). auto: newton for frictionless "
+                      "rigid pairs, fixed point for frictional ones (with "
+                      "friction the rotating normal makes the stick/slip "
+                      "search harder, doc/robustness.md) and for meshed "
+                      "masters. newton: also frictional rigid pairs, and "
+                      "frictionless meshed masters (except the mortar "
+                      "rule): each point projected again onto its master "
+                      "face at every iterate, with the derivatives of the "
+                      "projection in the Jacobian; the geometric loop only "
+                      "changes faces.");
+    prm.declare_entry("Threshold coupling",
+                      "true",
+                      Patterns::Bool(),
+                      "Keep K_fc, the derivative of the friction rows with "
+                      "respect to lambda (exact Jacobian; code_aster drops "
+                      "it).");
+    prm.declare_entry("Penalty",
+                      "false",
+                      Patterns::Bool(),
+                      "Penalty variant of the normal law: the contact force "
+                      "is rho_n g; lambda is post-processed.");
+    prm.declare_entry("Projection tolerance",
+                      "0.05",
+                      Patterns::Double(0),
+                      "A projection outside a master face by at most this "
+                      "fraction of the face's parameter range is accepted "
+                      "(closest of the candidates).");
+    prm.declare_entry("Geometric tolerance",
+                      "0.01",
+                      Patterns::Double(0),
+                      "The geometric loop (re-pairing) stops when the "
+                      "largest displacement change since the last pairing "
+                      "is at most this fraction of the step's displacement "
+                      "increment.");
+    prm.declare_entry("Maximum geometric iterations",
+                      "10",
+                      Patterns::Integer(1, 1000),
+                      "Cap of the geometric loop; reaching it fails the step "
+                      "(which is then cut).");
+    prm.declare_entry("Freeze after cycles",
+                      "3",
+                      Patterns::Integer(0, 100),
+                      "Anti-cycling (formulation.md 8): a contact point "
+                      "whose status returns to the one it had two Newton "
+                      "iterates before (stick/slip/stick, contact/free/"
+                      "contact, slip direction reversed and back) this many "
+                      "times in one Newton solve is frozen: kept in contact, "
+                      "or kept slipping in its last slip direction. A frozen "
+                      "point that the plain law contradicts at convergence "
+                      "is released and Newton goes on. Across pairings "
+                      "(geometric loop), a point back at its converged "
+                      "status of two pairings before keeps one status, and "
+                      "a point back on its master face of two pairings "
+                      "before stays on that face, for the rest of the load "
+                      "step. 0: never freeze.");
+    prm.declare_entry(
+      "Release extrapolation",
+      "true",
+      Patterns::Bool(),
+      "Active-set search on frictionless pairs (doc/robustness.md, "
+      "'Release extrapolation'): while a contact zone only shrinks, a "
+      "point (or multiplier node) still in compression whose mirror image "
+      "across its nearest point that went into tension lies in that "
+      "tension band is opened for the next solve too (the band would "
+      "halve per solve otherwise): at most as many as the band holds and "
+      "half of those in compression, the nearest first; one that closes "
+      "again is not opened early again in that Newton solve. The "
+      "converged state is unchanged. false: plain primal-dual active set.");
+    prm.declare_entry(
+      "Pairing at status changes",
+      "false",
+      Patterns::Bool(),
+      "Frictionless pairs with a meshed master and a point rule (not "
+      "mortar): pair again at every Newton iterate whose statuses "
+      "changed, before its solve (that iterate needs a solve anyway), so "
+      "that the pairing follows the active-set search and the geometric "
+      "loop starts from a pairing at most one solve old (one solve less "
+      "per step, doc/robustness.md). The pairing accepted then depends on "
+      "the path of the search, within the 'Geometric tolerance' (p0 "
+      "differs by 2e-4 across the Normal coefficient), and at c_n = 1e6 "
+      "the statuses chatter. false: the pairing is renewed only between "
+      "Newton solves (formulation.md 7).");
+    for (unsigned int k = 1; k <= counts.n_pairs; ++k)
+      {
+        prm.enter_subsection("Pair " + std::to_string(k));
+        ContactPairParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  void
+  ContactParameters::parse_parameters(ParameterHandler &prm,
+                                      const Counts &    counts)
+  {
+    prm.enter_subsection("Contact");
+    const std::string r = prm.get("Integration rule");
+    rule  = r == "nodal"   ? IntegrationRule::nodal :
+            r == "gauss"   ? IntegrationRule::gauss :
+            r == "simpson" ? IntegrationRule::simpson :
+            r == "mortar"  ? IntegrationRule::mortar :
+                             IntegrationRule::newton_cotes;
+    order         = prm.get_integer("Integration order");
+    segment_order = prm.get_integer("Segment order");
+    const std::string n = prm.get("Normal");
+    normal = n == "master" ? NormalChoice::master :
+             n == "slave"  ? NormalChoice::slave :
+                             NormalChoice::average;
+    const std::string i = prm.get("Initial status");
+    initial_status = i == "open"        ? InitialStatus::open :
+                     i == "penetrating" ? InitialStatus::penetrating :
+                                          InitialStatus::closed;
+    node_status              = prm.get("Statuses") == "node";
+    frozen_threshold         = prm.get("Friction threshold") == "frozen";
+    newton_geometry = prm.get("Geometric linearisation") != "fixed point";
+    newton_geometry_all =
+      prm.get("Geometric linearisation") == "newton";
+    threshold_coupling       = prm.get_bool("Threshold coupling");
+    penalty                  = prm.get_bool("Penalty");
+    projection_tolerance     = prm.get_double("Projection tolerance");
+    geometric_tolerance      = prm.get_double("Geometric tolerance");
+    max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
+    freeze_after_cycles      = prm.get_integer("Freeze after cycles");
+    release_extrapolation    = prm.get_bool("Release extrapolation");
+    pairing_at_status_changes = prm.get_bool("Pairing at status changes");
+    pairs.resize(counts.n_pairs);
+    for (unsigned int k = 0; k < counts.n_pairs; ++k)
+      {
+        prm.enter_subsection("Pair " + std::to_string(k + 1));
+        pairs[k].parse_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+    // The statuses per node apply to pairs with a meshed master under an
+    // integration-point rule; with friction they need the Newton threshold.
+    for (unsigned int k = 0; k < pairs.size(); ++k)
+      if (node_status && frozen_threshold && rule != IntegrationRule::nodal &&
+          pairs[k].master_is_body() && pairs[k].friction > 0)
+        throw InputError(
+          "subsection 'Contact', parameter 'Friction threshold' = frozen: "
+          "pair " + std::to_string(k + 1) + " (friction on a meshed master, "
+          "integration rule '" + r + "') decides its statuses per node "
+          "('Statuses = node'), which needs the Newton threshold: set "
+          "'Friction threshold = newton', or 'Statuses = point'.");
+  }
+
+
+  // ------------------------------------------------------------- Reference
+  void
+  ReferenceParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Reference solution");
+    prm.declare_entry("Displacement",
+                      "",
+                      Patterns::Anything(),
+                      "Exact displacement [m] for verification: Dimension "
+                      "expressions separated by ';' in x, y, z, t. Empty: "
+                      "none. The run prints the relative L2 error.");
+    prm.declare_entry("Stress",
+                      "",
+                      Patterns::Anything(),
+                      "Exact Cauchy stress [Pa]: Dimension^2 expressions, "
+                      "row by row, separated by ';'. Empty: none. The run "
+                      "prints the largest relative error at quadrature "
+                      "points.");
+    prm.declare_entry("Tolerance",
+                      "1e-10",
+                      Patterns::Double(0),
+                      "Relative error below which the comparison is "
+                      "reported as PASS.");
+    prm.declare_entry("Maximum contact pressure",
+                      "0",
+                      Patterns::Double(0),
+                      "Reference for the largest contact pressure p0 = "
+                      "max(-lambda) at the contact points [Pa]; 0: not "
+                      "checked.");
+    prm.declare_entry("Pressure tolerance",
+                      "0.02",
+                      Patterns::Double(0),
+                      "Relative tolerance of the p0 check.");
+    prm.declare_entry("Contact half-width",
+                      "0",
+                      Patterns::Double(0),
+                      "Reference contact half-width a (or radius in 3D) [m], "
+                      "measured from 'Contact centre'; 0: not checked. The "
+                      "computed a is midway between the farthest closed "
+                      "point and the nearest open point beyond it.");
+    prm.declare_entry("Contact centre",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Centre of the contact zone for the half-width [m].");
+    prm.declare_entry("Half-width tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Absolute tolerance of the half-width check [m] "
+                      "(typically one slave element).");
+    prm.declare_entry("Contact pressure",
+                      "",
+                      Patterns::Anything(),
+                      "Exact contact pressure p(x, y, z) [Pa] on the slave "
+                      "surface; empty: not checked. The run prints the "
+                      "relative L2 error over the contact points.");
+    prm.declare_entry("Pressure L2 tolerance",
+                      "0.05",
+                      Patterns::Double(0),
+                      "Tolerance of the relative L2 pressure error.");
+    prm.declare_entry("Friction force ratio",
+                      "0",
+                      Patterns::Double(0),
+                      "Reference for |F_t| / |F_n| of the contact force on "
+                      "the slave of pair 1, F_n its component along 'Friction "
+                      "ratio normal' and F_t the rest (= mu in full sliding); "
+                      "0: not checked.");
+    prm.declare_entry("Friction ratio normal",
+                      "0, 1, 0",
+                      point_pattern(),
+                      "Direction of the normal force for 'Friction force "
+                      "ratio' (normalised).");
+    prm.declare_entry("Friction ratio frame",
+                      "global",
+                      Patterns::Selection("global|contact"),
+                      "global: F_n and F_t are the parts of the total contact "
+                      "force along 'Friction ratio normal' and across it "
+                      "(a flat master). contact: F_n = sum of w |f . n| and "
+                      "F_t = sum of w |P f| over the contact points, each in "
+                      "its own contact frame (a curved master, e.g. an "
+                      "ironing die, whose total force also carries the "
+                      "tilted normal pressures).");
+    prm.declare_entry("Force variation tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "If > 0: at the last step, the largest change of the "
+                      "total contact force of pair 1 between consecutive "
+                      "steps with t >= 'Friction ratio from time', relative "
+                      "to its mean magnitude over these steps, is checked "
+                      "against this value (no spikes from status "
+                      "chattering).");
+    prm.declare_entry(
+      "Stick zone",
+      "none",
+      Patterns::Selection("none|cattaneo-mindlin"),
+      "cattaneo-mindlin: at every step with a tangential force, the half-width "
+      "c of the stick zone of pair 1 (around 'Contact centre') is checked "
+      "against Cattaneo-Mindlin partial slip under a constant normal force P, "
+      "c = a (1 - |Q|/(mu P))^(1/m) while Q grows from 0 (first loading) and "
+      "c = a (1 - |Q - Q*|/(2 mu P))^(1/m) after the tangential force Q "
+      "turned at Q* (Masing), m = 2 in 2D (cylinder) and 3 in 3D (sphere); a "
+      "is the measured contact half-width, P and Q the contact force of pair "
+      "1 along 'Friction ratio normal' and across it, tolerance 'Half-width "
+      "tolerance'. 2D: a and c midway between the farthest point inside "
+      "(closed; stick) and the nearest point outside beyond it. 3D: "
+      "area-equivalent radii, a = sqrt(A_closed / pi) and c = "
+      "sqrt(A_stick / pi) with A the summed weights of the closed and of the "
+      "stick points. Valid for elastically similar bodies (no coupling of the "
+      "normal and tangential problems).");
+    prm.declare_entry("Friction ratio from time",
+                      "0",
+                      Patterns::Double(0),
+                      "The friction force ratio is checked at the steps "
+                      "with t >= this time (steady sliding).");
+    prm.declare_entry("Friction ratio tolerance",
+                      "0.01",
+                      Patterns::Double(0),
+                      "Relative tolerance of the friction force ratio check.");
+    prm.declare_entry("Point values",
+                      "",
+                      Patterns::Anything(),
+                      "Displacement values to check, separated by ';', each "
+                      "'x, y[, z] : component : value[ : tolerance]' with "
+                      "component x, y or z and an optional relative "
+                      "tolerance of its own (else 'Point value tolerance'), "
+                      "e.g. '0.00125, 0 : x : 2.72e-5 : 0.01'.");
+    prm.declare_entry("Point value tolerance",
+                      "0.05",
+                      Patterns::Double(0),
+                      "Relative tolerance of the point value checks.");
+    prm.declare_entry("Action-reaction tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Check after each step, for every contact pair, that "
+                      "the force the displacement rows carry (what the "
+                      "master receives) equals the force the multipliers "
+                      "stand for, recomputed from them alone (the traction "
+                      "lambda n + mu lambda T Lambda): their difference over "
+                      "the larger must be below this value. The two differ "
+                      "by the augmentation terms, which vanish at a "
+                      "converged state, and by any error of the contact law "
+                      "in the rows. 0: not checked.");
+    prm.declare_entry("Slip law tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Check after each step, for every pair with friction, "
+                      "Coulomb's law where the contact slips: at every "
+                      "slipping contact point (statuses per point) or "
+                      "slipping multiplier node (statuses per node: its "
+                      "force against its weighted slip) the friction force "
+                      "on the slave opposes the slip increment, and "
+                      "|f_t| = mu |f_n| within this relative tolerance. A "
+                      "step without slipping point says so. 0: not "
+                      "checked.");
+    prm.declare_entry("Contact force",
+                      "",
+                      Patterns::Anything(),
+                      "Reference for the total contact force on the master "
+                      "of pair 1 [N; N/m in 2D; axisymmetric: over the "
+                      "circumference], Dimension expressions of t separated "
+                      "by ';' (e.g. the applied load where the scene fixes "
+                      "it); a component written '*' is left out (e.g. the "
+                      "horizontal force of a half model). Empty: not "
+                      "checked.");
+    prm.declare_entry("Contact force from time",
+                      "0",
+                      Patterns::Double(),
+                      "The 'Contact force' check runs at the steps with t >= "
+                      "this time (e.g. the steady phase of a load path).");
+    prm.declare_entry("Contact force tolerance",
+                      "1e-3",
+                      Patterns::Double(0),
+                      "Relative tolerance of the 'Contact force' check: "
+                      "|F - F_ref| / |F_ref|.");
+    prm.declare_entry("Gap tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "Check after each step that every closed contact point "
+                      "has |gap| below this value [m] and no open point "
+                      "penetrates by more; at least one point must be "
+                      "closed. 0: not checked.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  ReferenceParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Reference solution");
+    displacement = split_expressions(prm.get("Displacement"));
+    stress       = split_expressions(prm.get("Stress"));
+    tolerance    = prm.get_double("Tolerance");
+    max_pressure           = prm.get_double("Maximum contact pressure");
+    pressure_tolerance     = prm.get_double("Pressure tolerance");
+    half_width             = prm.get_double("Contact half-width");
+    contact_centre         = to_doubles(prm.get("Contact centre"));
+    half_width_tolerance   = prm.get_double("Half-width tolerance");
+    contact_pressure       = prm.get("Contact pressure");
+    pressure_l2_tolerance  = prm.get_double("Pressure L2 tolerance");
+    point_value_tolerance  = prm.get_double("Point value tolerance");
+    action_reaction_tolerance = prm.get_double("Action-reaction tolerance");
+    slip_law_tolerance        = prm.get_double("Slip law tolerance");
+    contact_force             = split_expressions(prm.get("Contact force"));
+    contact_force_tolerance   = prm.get_double("Contact force tolerance");
+    contact_force_from        = prm.get_double("Contact force from time");
+    gap_tolerance           = prm.get_double("Gap tolerance");
+    friction_ratio         = prm.get_double("Friction force ratio");
+    friction_ratio_normal  = to_doubles(prm.get("Friction ratio normal"));
+    friction_ratio_tolerance = prm.get_double("Friction ratio tolerance");
+    friction_ratio_from      = prm.get_double("Friction ratio from time");
+    friction_ratio_contact_frame = prm.get("Friction ratio frame") == "contact";
+    force_variation_tolerance = prm.get_double("Force variation tolerance");
+    cattaneo_mindlin = prm.get("Stick zone") == "cattaneo-mindlin";
+    point_values.clear();
+    for (const auto &entry : split_expressions(prm.get("Point values")))
+      {
+        const auto parts = Utilities::split_string_list(entry, ':');
+        if ((parts.size() != 3 && parts.size() != 4) ||
+            (parts[1] != "x" && parts[1] != "y" && parts[1] != "z"))
+          throw InputError("subsection 'Reference solution', parameter "
+                           "'Point values': cannot read '" +
+                           entry +
+                           "'. Write 'x, y[, z] : component : value[ : "
+                           "tolerance]' with component x, y or z.");
+        PointValue v;
+        v.point     = to_doubles(parts[0]);
+        v.component = component_index(parts[1]);
+        v.value     = Utilities::string_to_double(parts[2]);
+        v.tolerance = parts.size() == 4 ?
+                        Utilities::string_to_double(parts[3]) :
+                        point_value_tolerance;
+        point_values.push_back(v);
+      }
+    prm.leave_subsection();
+  }
+
+
+} // namespace Signorini

@@ -1,0 +1,55 @@
+#ifndef signorini_source_core_parameters_helpers_h
+#define signorini_source_core_parameters_helpers_h
+
+// Helpers shared by the source files of the parameters (private to
+// source/core/).
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <string>
+#include <vector>
+
+namespace Signorini
+{
+  namespace internal
+  {
+    using namespace dealii;
+
+    inline std::vector<double>
+    to_doubles(const std::string &text)
+    {
+      return Utilities::string_to_double(
+        Utilities::split_string_list(text, ','));
+    }
+
+    inline std::vector<unsigned int>
+    to_unsigned(const std::string &text)
+    {
+      std::vector<unsigned int> result;
+      for (const int v :
+           Utilities::string_to_int(Utilities::split_string_list(text, ',')))
+        result.push_back(static_cast<unsigned int>(v));
+      return result;
+    }
+
+    // Pattern for a comma separated list of doubles: empty or 1..3 numbers.
+    inline Patterns::List
+    point_pattern(const unsigned int min = 0)
+    {
+      return Patterns::List(Patterns::Double(), min, 3, ",");
+    }
+
+    inline unsigned int
+    component_index(const std::string &name)
+    {
+      if (name == "x")
+        return 0;
+      if (name == "y")
+        return 1;
+      return 2;
+    }
+  } // namespace internal
+} // namespace Signorini
+
+#endif

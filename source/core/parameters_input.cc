@@ -1,0 +1,418 @@
+// Consistency checks across subsections and reading a parameter file or
+// text.
+#include <deal.II/base/utilities.h>
+
+#include <signorini/core/input_checks.h>
+#include <signorini/core/parameters.h>
+#include <signorini/contact/obstacles/interface.h>
+#include <signorini/material/interface.h>
+
+#include "parameters_helpers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <regex>
+#include <sstream>
+
+namespace Signorini
+{
+  using internal::component_index;
+  using internal::point_pattern;
+  using internal::to_doubles;
+  using internal::to_unsigned;
+
+  void
+  Parameters::check_consistency() const
+  {
+    const unsigned int dim = dimension;
+    for (unsigned int k = 0; k < boundary_conditions.dirichlet.size(); ++k)
+      {
+        const auto &      d = boundary_conditions.dirichlet[k];
+        const std::string where =
+          "subsection 'Boundary conditions/Dirichlet " + std::to_string(k + 1) +
+          "'";
+        for (const unsigned int c : d.components)
+          if (c >= dim)
+            throw InputError(where +
+                             ", parameter 'Components': component z does not "
+                             "exist for Dimension = 2. Use x and/or y.");
+        // A component listed twice would take the value of its first
+        // expression only, silently.
+        for (unsigned int i = 0; i < d.components.size(); ++i)
+          if (std::count(d.components.begin(),
+                         d.components.begin() + i,
+                         d.components[i]))
+            throw InputError(where + ", parameter 'Components': component " +
+                             std::string(1, "xyz"[d.components[i]]) +
+                             " is listed twice. List each component once, "
+                             "with one expression per listed component in "
+                             "'Values'.");
+        if (d.values.size() != d.components.size())
+          throw InputError(where + ", parameter 'Values': " +
+                           std::to_string(d.values.size()) +
+                           " expression(s) for " +
+                           std::to_string(d.components.size()) +
+                           " component(s). Give one expression per listed "
+                           "component, separated by ';'.");
+        if (!d.at_point.empty() && d.at_point.size() != dim)
+          throw InputError(where + ", parameter 'At point': give " +
+                           std::to_string(dim) + " coordinates.");
+      }
+    for (unsigned int k = 0; k < boundary_conditions.neumann.size(); ++k)
+      {
+        const auto &       n = boundary_conditions.neumann[k];
+        const unsigned int expected =
+          n.type == NeumannType::traction ? dim : 1;
+        if (n.values.size() != expected)
+          throw InputError("subsection 'Boundary conditions/Neumann " +
+                           std::to_string(k + 1) + "', parameter 'Values': " +
+                           std::to_string(n.values.size()) +
+                           " expression(s) given, " + std::to_string(expected) +
+                           " expected for this Type and Dimension.");
+      }
+    if (boundary_conditions.body_force.size() < dim)
+      throw InputError("subsection 'Boundary conditions', parameter 'Body "
+                       "force': give at least Dimension expressions separated "
+                       "by ';'.");
+    if (!reference.displacement.empty() && reference.displacement.size() != dim)
+      throw InputError("subsection 'Reference solution', parameter "
+                       "'Displacement': give Dimension expressions.");
+    if (!reference.contact_force.empty() &&
+        reference.contact_force.size() != dim)
+      throw InputError("subsection 'Reference solution', parameter 'Contact "
+                       "force': give Dimension expressions of t separated by "
+                       "';' (the force components), or leave it empty.");
+    if (!reference.contact_force.empty() && contact.pairs.empty())
+      throw InputError("subsection 'Reference solution', parameter 'Contact "
+                       "force': the scene has no contact pair. Remove the "
+                       "reference or declare a pair in subsection 'Contact'.");
+    if (!reference.stress.empty() && reference.stress.size() != dim * dim)
+      throw InputError("subsection 'Reference solution', parameter 'Stress': "
+                       "give Dimension^2 expressions (row by row).");
+    std::map<unsigned int, unsigned int> seen;
+    for (unsigned int k = 0; k < materials.size(); ++k)
+      if (!seen.emplace(materials[k].material_id, k).second)
+        throw InputError("subsection 'Materials/Material " +
+                         std::to_string(k + 1) +
+                         "', parameter 'Material id': id " +
+                         std::to_string(materials[k].material_id) +
+                         " is already used by Material " +
+                         std::to_string(seen[materials[k].material_id] + 1) +
+                         ".");
+    for (unsigned int b = 0; b < geometry.bodies.size(); ++b)
+      if (geometry.bodies[b].shape == BodyShape::file &&
+          geometry.bodies[b].mesh_file.empty())
+        throw InputError("subsection 'Geometry/Body " + std::to_string(b + 1) +
+                         "', parameter 'Mesh file': Shape = file needs a mesh "
+                         "file name.");
+
+    // Contact.
+    const auto &c = contact;
+    if (c.rule == IntegrationRule::newton_cotes && c.order != 1 &&
+        c.order != 2 && c.order != 4 && c.order != 6)
+      throw InputError("subsection 'Contact', parameter 'Integration order': "
+                       "the newton-cotes rule exists for orders 1, 2, 4 and 6 "
+                       "(trapezoid, Simpson, Milne, Weddle), not " +
+                       std::to_string(c.order) + ".");
+    if (c.normal != NormalChoice::master && c.rule != IntegrationRule::nodal)
+      throw InputError("subsection 'Contact', parameter 'Normal': the slave "
+                       "and average normals are defined at nodes and need "
+                       "'Integration rule = nodal'. Set 'Normal = master' or "
+                       "'Integration rule = nodal'.");
+    if (axisymmetric && dimension != 2)
+      throw InputError("parameter 'Axisymmetric': an axisymmetric model is a "
+                       "2D meridian section; set 'Dimension = 2' or "
+                       "'Axisymmetric = false'.");
+    if (!c.pairs.empty() && fe_degree > 2)
+      throw InputError("subsection 'Finite element', parameter 'Degree': "
+                       "contact supports Q1 and Q2 slave and master faces; "
+                       "set 'Degree = 1' or '2' when 'Contact/Number of "
+                       "contact pairs' > 0 (Q3 is available without "
+                       "contact).");
+    if (!c.pairs.empty() && linear_solver.type == LinearSolverType::cg)
+      throw InputError("subsection 'Linear solver', parameter 'Type': contact "
+                       "systems (u | lambda | Lambda) are unsymmetric "
+                       "saddle-point systems, which CG cannot solve; set "
+                       "'Type = GMRES' (block preconditioner) or 'direct' "
+                       "when 'Contact/Number of contact pairs' > 0.");
+    for (unsigned int k = 0; k < c.pairs.size(); ++k)
+      {
+        const auto &      p = c.pairs[k];
+        const std::string where =
+          "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
+        if (p.slave_ids.empty())
+          throw InputError(where + ", parameter 'Slave boundary id': give "
+                                   "the boundary id(s) of the slave surface.");
+        if (p.master_is_body())
+          {
+            if (p.master_ids.empty())
+              throw InputError(where + ", parameter 'Master boundary id': "
+                                       "Master = body needs the boundary "
+                                       "id(s) of the master surface.");
+            for (const auto id : p.master_ids)
+              if (std::count(p.slave_ids.begin(), p.slave_ids.end(), id))
+                throw InputError(
+                  where + ": boundary id " + std::to_string(id) +
+                  " is both slave and master. The slave and master surfaces "
+                  "must be different boundaries (of different bodies).");
+          }
+        else
+          {
+            if (p.obstacle_motion.size() < dim)
+              throw InputError(where + ", parameter 'Obstacle motion': give " +
+                               std::to_string(dim) +
+                               " expressions separated by ';'.");
+            const bool no_rotation = p.obstacle_rotation.size() == 1 &&
+                                     Utilities::trim(p.obstacle_rotation[0]) ==
+                                       "0";
+            if (!no_rotation &&
+                p.obstacle_rotation.size() != (dim == 2 ? 1u : 3u))
+              throw InputError(
+                where + ", parameter 'Obstacle rotation': give " +
+                (dim == 2 ? std::string("the angle [rad] as one expression "
+                                        "of t") :
+                            std::string("the rotation vector (axis times "
+                                        "angle [rad]) as 3 expressions of t "
+                                        "separated by ';'")) +
+                ", or 0.");
+            if (p.rotation_centre.size() < dim)
+              throw InputError(where + ", parameter 'Rotation centre': give " +
+                               std::to_string(dim) + " coordinates.");
+          }
+      }
+  }
+
+
+  // ------------------------------------------------------------ File reading
+  namespace
+  {
+    // The subsection path that is open at line @p line_no of @p text.
+    std::string
+    subsection_at_line(const std::string &text, const unsigned int line_no)
+    {
+      std::istringstream       in(text);
+      std::vector<std::string> stack;
+      std::string              line;
+      for (unsigned int n = 1; n < line_no && std::getline(in, line); ++n)
+        {
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (line.rfind("subsection ", 0) == 0)
+            stack.push_back(Utilities::trim(line.substr(11)));
+          else if (line == "end" && !stack.empty())
+            stack.pop_back();
+        }
+      std::string path;
+      for (const auto &s : stack)
+        path += (path.empty() ? "" : "/") + s;
+      return path.empty() ? "top level" : "subsection '" + path + "'";
+    }
+
+    // Turn deal.II's parse exception into one message naming line and
+    // subsection, with a hint for the cases users hit most.
+    std::string
+    explain_parse_error(const ExceptionBase &           e,
+                        const std::string &             text,
+                        const std::string &             source,
+                        const std::vector<std::string> &origins)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      std::string message = info.str();
+      // print_info() indents and wraps; put it on one line.
+      message = std::regex_replace(message, std::regex("\\s+"), " ");
+      message = Utilities::trim(message);
+
+      std::smatch m;
+      std::string where = source;
+      if (std::regex_search(message, m, std::regex("Line <(\\d+)>")))
+        {
+          const unsigned int line_no = std::stoi(m[1]);
+          where = (line_no >= 1 && line_no <= origins.size() ?
+                     origins[line_no - 1] :
+                     source + ", line " + std::string(m[1])) +
+                  " (" + subsection_at_line(text, line_no) + ")";
+        }
+      message = std::regex_replace(message,
+                                   std::regex("Line <\\d+> of file <[^>]*>: "),
+                                   "");
+      std::string hint;
+      if (message.find("No entry with name") != std::string::npos ||
+          message.find("has not been declared") != std::string::npos ||
+          message.find("No such subsection") != std::string::npos ||
+          message.find("not been declared") != std::string::npos)
+        hint = " Check the spelling against 'signorini --print-parameters'; "
+               "numbered subsections (Body k, Material k, Dirichlet k, "
+               "Neumann k, Pair k) must not exceed their 'Number of ...' entry.";
+      else if (message.find("does not match the given pattern") !=
+               std::string::npos)
+        hint = message.find("named Dimension") != std::string::npos ?
+                 " Set Dimension = 2 (plane strain) or 3." :
+                 " Change the value to one the pattern allows.";
+      return "Error in " + where + ": " + message + hint;
+    }
+
+    Parameters
+    parse_text(const std::string &             text,
+               const std::string &             source,
+               ParameterHandler &              prm,
+               const std::vector<std::string> &origins = {})
+    {
+      check_parameter_text(text, source);
+      // Pre-pass: only the counts, ignoring everything else.
+      Counts counts;
+      {
+        ParameterHandler pre;
+        pre.declare_entry("Dimension", "2", Patterns::Anything());
+        pre.enter_subsection("Geometry");
+        pre.declare_entry("Number of bodies", "1", Patterns::Integer(1, 16));
+        pre.leave_subsection();
+        pre.enter_subsection("Materials");
+        pre.declare_entry("Number of materials", "1", Patterns::Integer(1, 64));
+        pre.leave_subsection();
+        pre.enter_subsection("Boundary conditions");
+        pre.declare_entry("Number of Dirichlet conditions",
+                          "1",
+                          Patterns::Integer(0, 64));
+        pre.declare_entry("Number of Neumann conditions",
+                          "0",
+                          Patterns::Integer(0, 64));
+        pre.leave_subsection();
+        pre.enter_subsection("Contact");
+        pre.declare_entry("Number of contact pairs",
+                          "0",
+                          Patterns::Integer(0, 64));
+        pre.leave_subsection();
+        try
+          {
+            pre.parse_input_from_string(text, "", true);
+          }
+        catch (const ExceptionBase &e)
+          {
+            throw InputError(explain_parse_error(e, text, source, origins));
+          }
+        pre.enter_subsection("Geometry");
+        counts.n_bodies = pre.get_integer("Number of bodies");
+        pre.leave_subsection();
+        pre.enter_subsection("Materials");
+        counts.n_materials = pre.get_integer("Number of materials");
+        pre.leave_subsection();
+        pre.enter_subsection("Boundary conditions");
+        counts.n_dirichlet = pre.get_integer("Number of Dirichlet conditions");
+        counts.n_neumann   = pre.get_integer("Number of Neumann conditions");
+        pre.leave_subsection();
+        pre.enter_subsection("Contact");
+        counts.n_pairs = pre.get_integer("Number of contact pairs");
+        pre.leave_subsection();
+      }
+
+      Parameters::declare_parameters(prm, counts);
+      try
+        {
+          prm.parse_input_from_string(text, "", false);
+        }
+      catch (const ExceptionBase &e)
+        {
+          throw InputError(explain_parse_error(e, text, source, origins));
+        }
+      check_numbered_subsections(text, counts, source);
+      Parameters parameters;
+      parameters.parse_parameters(prm, counts);
+      return parameters;
+    }
+  } // namespace
+
+
+  namespace
+  {
+    // The directory of @p filename ("." for a bare name).
+    std::string
+    directory_of(const std::string &filename)
+    {
+      const auto slash = filename.find_last_of('/');
+      return slash == std::string::npos ? "." : filename.substr(0, slash);
+    }
+
+    // ParameterHandler's 'include <file>' lines replaced by the file's text,
+    // recursively, with relative paths taken from the directory of the file
+    // that includes it (as 'Mesh file'; ParameterHandler itself would take
+    // them from the working directory). @p origins gets "file 'f', line n"
+    // for every line of the result, for messages.
+    std::string
+    expand_includes(const std::string &       text,
+                    const std::string &       filename,
+                    std::vector<std::string> &origins,
+                    const unsigned int        depth = 0)
+    {
+      std::istringstream in(text);
+      std::string        line, result;
+      for (unsigned int n = 1; std::getline(in, line); ++n)
+        {
+          const std::string where =
+            "parameter file '" + filename + "', line " + std::to_string(n);
+          const std::string code =
+            Utilities::trim(line.substr(0, line.find('#')));
+          if (code.rfind("include", 0) != 0 ||
+              (code.size() > 7 && !std::isspace(code[7])))
+            {
+              result += line + "\n";
+              origins.push_back(where);
+              continue;
+            }
+          std::string name = Utilities::trim(code.substr(7));
+          if (name.empty())
+            throw InputError(where + ": 'include' needs a file name.");
+          if (depth >= 8)
+            throw InputError(where + ": 'include' nested deeper than 8 "
+                                     "files (does a file include itself?).");
+          if (name[0] != '/')
+            name = directory_of(filename) + "/" + name;
+          std::ifstream included(name);
+          if (!included || std::filesystem::is_directory(name))
+            throw InputError(where + ": cannot read the included file '" +
+                             name +
+                             "'. Relative paths start at the directory of "
+                             "the file that includes it.");
+          std::stringstream buffer;
+          buffer << included.rdbuf();
+          check_parameter_text(buffer.str(), "included file '" + name + "'");
+          result += expand_includes(buffer.str(), name, origins, depth + 1);
+        }
+      return result;
+    }
+  } // namespace
+
+
+  Parameters
+  read_parameters(const std::string &filename, ParameterHandler &prm)
+  {
+    if (std::filesystem::is_directory(filename))
+      throw InputError("'" + filename +
+                       "' is a directory, not a parameter file. Give the "
+                       "path of a .prm file.");
+    std::ifstream in(filename);
+    if (!in)
+      throw InputError("Cannot open the parameter file '" + filename +
+                       "'. Give the path of an existing .prm file.");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    const std::string source = "parameter file '" + filename + "'";
+    check_parameter_text(buffer.str(), source);
+    std::vector<std::string> origins;
+    const std::string        text =
+      expand_includes(buffer.str(), filename, origins);
+    Parameters parameters = parse_text(text, source, prm, origins);
+    parameters.input_directory = directory_of(filename);
+    parameters.input_file = filename;
+    return parameters;
+  }
+
+
+  Parameters
+  read_parameters_from_string(const std::string &text, ParameterHandler &prm)
+  {
+    return parse_text(text, "parameter text", prm);
+  }
+} // namespace Signorini
