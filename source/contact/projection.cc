@@ -170,6 +170,8 @@ namespace Signorini
       constexpr double step_tolerance = 1e-10;
       // Largest accepted step in reference coordinates (damping).
       constexpr double max_step = 0.5;
+      // Steps below this are taken without line search (see below).
+      constexpr double small_step = 1e-6;
 
       const auto objective = [&](const Point<dim - 1> &xi) {
         return 0.5 * (evaluate_face_map(face_points, xi).x - p)
@@ -220,13 +222,23 @@ namespace Signorini
               break;
             }
 
-          // Backtracking (Armijo) on f; a descent direction since H is SPD.
-          const double f0    = 0.5 * r.norm_square();
-          const double slope = grad * step;
-          double       alpha = 1.;
-          for (unsigned int b = 0; b < 20; ++b, alpha *= 0.5)
-            if (objective(xi + alpha * step) <= f0 + 1e-4 * alpha * slope)
-              break;
+          // Backtracking (Armijo) on f, a descent direction since H is SPD,
+          // while the step is large. A small step is taken whole: there f
+          // falls by about |step|^2 |a|^2, which is below the round-off of f
+          // (|r| eps |x|) for steps under about 1e-8, so that the test
+          // would halve such a step at random and the iteration would end
+          // unconverged on round-off (a 2-rank run then paired a contact
+          // point with a face 2 mm away). Newton on the polynomial face map
+          // is in its quadratic range there.
+          double alpha = 1.;
+          if (step_max > small_step)
+            {
+              const double f0    = 0.5 * r.norm_square();
+              const double slope = grad * step;
+              for (unsigned int b = 0; b < 20; ++b, alpha *= 0.5)
+                if (objective(xi + alpha * step) <= f0 + 1e-4 * alpha * slope)
+                  break;
+            }
           xi += alpha * step;
         }
 
