@@ -355,6 +355,123 @@ namespace Signorini
 
 
 
+    template <int dim>
+    void
+    ContactProblem<dim>::record_point_status(ContactPoint          &point,
+                                             const PointEvaluation &e,
+                                             const bool         new_iterate,
+                                             ContactStatistics &stats)
+    {
+      const auto        &r            = e.r;
+      const bool         fric         = e.fric;
+      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
+      ++stats.n_points;
+      stats.n_unpaired += !point.paired;
+      if (r.in_contact)
+        {
+          ++stats.n_contact;
+          if (fric && r.friction_active)
+            (r.status == PointStatus::stick ? stats.n_stick : stats.n_slip)++;
+        }
+      // The status label of a law response ('slip' also for a closed point
+      // without friction).
+      const auto label = [fric](const PointResponse<dim> &response) {
+        return !response.in_contact ?
+                 PointStatus::free :
+                 (fric && response.friction_active ? response.status :
+                                                     PointStatus::slip);
+      };
+      const PointStatus status = label(r);
+      // A point that closed with a zero threshold (friction inactive,
+      // formulation.md 3.3) and one with friction on are different branches
+      // of the law even when both are labelled 'slip'. A slip direction that
+      // turned by more than 90 degrees (in 2D: reversed) is another branch
+      // of the slip law too.
+      const bool reversed = status == PointStatus::slip &&
+                            point.status == PointStatus::slip &&
+                            r.slip_direction * point.slip_direction < 0;
+      // (Node-status points: the node changes are counted instead.)
+      const bool changed =
+        !e.by_node && ((status != point.status) ||
+                       (r.friction_active != point.friction_active) || reversed);
+      stats.n_reversed += reversed;
+      stats.n_changed += changed;
+
+      // Anti-cycling (formulation.md 8), see start_newton_solve().
+      const bool frozen = point.freeze_contact && !e.by_node;
+      if (frozen)
+        {
+          // What the plain law says at this iterate.
+          PointState<dim> plain       = e.s;
+          plain.freeze_contact        = false;
+          plain.frozen_slip_direction = Tensor<1, dim>();
+          plain.freeze_stick          = false;
+          const auto        rp = evaluate_contact_law(plain, e.point_law);
+          const PointStatus plain_status = label(rp);
+          ++stats.n_frozen;
+          const bool violated = plain_status != status ||
+                                (status == PointStatus::slip &&
+                                 rp.slip_direction * r.slip_direction < 0);
+          point.plain_status    = plain_status;
+          point.plain_direction = rp.slip_direction;
+          point.plain_violated  = violated;
+          if (point.geometric_freeze)
+            {
+              ++stats.n_geometric_frozen;
+              stats.n_geometric_violated += violated;
+            }
+          else
+            stats.n_violated += violated;
+        }
+      if (new_iterate && !frozen && !e.by_node)
+        {
+          // Back to the status of two iterates before (a 2-cycle), or
+          // changed more than 2 N times (longer cycles).
+          point.changes += changed;
+          const bool back =
+            changed && iterates_recorded >= 2 &&
+            ((status == point.status_before &&
+              (status != PointStatus::slip ||
+               r.slip_direction * point.direction_before >= 0)) ||
+             (freeze_after > 0 && point.changes > 2 * freeze_after));
+          if (back)
+            {
+              ++point.cycles;
+              ++stats.n_cycling;
+            }
+          if (back && freeze_after > 0 && point.cycles >= freeze_after &&
+              !point.was_frozen)
+            {
+              // Freeze from the next evaluation on: in contact if the cycle
+              // went through 'free', slipping in the last slip direction if
+              // it went through stick or reversed.
+              point.was_frozen = true;
+              ++stats.n_newly_frozen;
+              freeze_for_cycle(point,
+                               status,
+                               r.slip_direction,
+                               point.status,
+                               point.slip_direction,
+                               fric);
+            }
+        }
+      if (new_iterate)
+        {
+          point.status_before    = point.status;
+          point.direction_before = point.slip_direction;
+        }
+      point.status          = status;
+      point.friction_active = r.friction_active;
+      point.slip_direction  = r.slip_direction;
+      point.gap             = e.s.gap;
+      point.lambda          = e.lambda_shown;
+      point.Lambda          = e.s.Lambda;
+      point.force           = r.force;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        point.slip[k] = e.s.slip * e.s.tangents[k];
+    }
+
+
     template class ContactProblem<2>;
     template class ContactProblem<3>;
   } // namespace Contact

@@ -8,6 +8,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/contact/contact_problem.h>
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -61,6 +63,67 @@ namespace Signorini
         return offset;
       }
     } // namespace internal
+
+
+    /**
+     * Everything the assembly of one contact point computes on the way from
+     * the iterate to its local rows (formulation.md 2 to 5): the law of its
+     * pair, the kinematics of the slave and master points, the point state
+     * and the law's response, the friction status of its multiplier nodes
+     * (node path), and the layout of its local unknowns e | m | lambda |
+     * Lambda. One object serves all points (its arrays are allocated once).
+     */
+    template <int dim>
+    struct ContactProblem<dim>::PointEvaluation
+    {
+      // The law of the pair; the point's own (no friction where its
+      // multiplier nodes are all excluded from friction); friction on;
+      // statuses per multiplier node (node path) or per point.
+      LawParameters law, point_law;
+      bool          fric = false, by_node = false;
+
+      // Slave point: N_e[a], the shape value of local displacement column
+      // a; position x_e and increment du_e since the step start.
+      std::vector<double> N_e;
+      Point<dim>          x_e;
+      Tensor<1, dim>      du_e;
+      // Meshed master face (nullptr: rigid obstacle or unpaired) and its
+      // number of displacement columns.
+      const MasterFace *master = nullptr;
+      unsigned int      n_m    = 0;
+
+      // Newton on the geometry of a rigid obstacle: dn/du, dx^m/du and
+      // the slip on the obstacle's surface.
+      bool           geometry_newton = false;
+      Tensor<2, dim> dn_du, dslip_du;
+      Tensor<1, dim> surface_slip;
+
+      PointState<dim>    s;
+      double             lambda_shown = 0; // lambda with psi (output)
+      PointResponse<dim> r;
+      Tensor<1, dim - 1> slip_t; // T^T v
+
+      // Friction status, lambda_l and Lambda_l of the face's multiplier
+      // nodes (node path with friction; empty otherwise).
+      struct NodeData
+      {
+        const NodeFriction *status;
+        double              lambda;
+        Tensor<1, dim - 1>  Lambda;
+      };
+      std::vector<NodeData> node_data;
+
+      // Local unknowns: n_e slave and n_m master displacement columns,
+      // n_l multipliers lambda from o_c, n_f friction multipliers from
+      // o_f; n in all. Nd[a]: shape value of displacement column a with
+      // the sign of d = u^e - u^m, comp[a]: its component. rows[l]: the
+      // Signorini row of multiplier node l.
+      unsigned int                    n_e = 0, n_l = 0, n_f = 0;
+      unsigned int                    o_c = 0, o_f = 0, n = 0;
+      std::vector<double>             Nd;
+      std::vector<unsigned int>       comp;
+      std::vector<NodeStatusRow<dim>> rows;
+    };
   }   // namespace Contact
 } // namespace Signorini
 

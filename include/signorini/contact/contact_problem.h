@@ -10,9 +10,11 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 #include <deal.II/numerics/rtree.h>
 
 #include <signorini/contact/contact_law.h>
@@ -783,6 +785,61 @@ namespace Signorini
                            const TrilinosWrappers::MPI::Vector &state,
                            std::vector<Point<dim>> &            x,
                            Point<dim> &                         inside) const;
+
+      // The assembly of one contact point (source/contact/assembly.cc,
+      // local_rows.cc; the data in source/contact/helpers.h).
+      struct PointEvaluation;
+
+      /** Point state and law response of @p point at @p state (from
+       * @p start): kinematics, gap, slip, multipliers, the law (or the
+       * node path's), the node friction force and, on a rigid obstacle
+       * with Newton on the geometry, its derivatives. */
+      void
+      evaluate_point(ContactPoint &                              point,
+                     const std::vector<types::global_dof_index> &cell_dofs,
+                     const TrilinosWrappers::MPI::Vector &       state,
+                     const TrilinosWrappers::MPI::Vector &       start,
+                     PointEvaluation &                           e);
+
+      /** Counts the status of an evaluated point into @p stats, runs its
+       * anti-cycling at a new iterate, and stores its status and output
+       * values (active_set_history.cc). */
+      void
+      record_point_status(ContactPoint &         point,
+                          const PointEvaluation &e,
+                          const bool             new_iterate,
+                          ContactStatistics &    stats);
+
+      /** Layout of the local unknowns and the local residual rows -R of an
+       * evaluated point (point path; node friction rows per node). */
+      void
+      local_residual(const ContactPoint &                 point,
+                     const TrilinosWrappers::MPI::Vector &state,
+                     PointEvaluation &                    e,
+                     Vector<double> &                     F) const;
+
+      /** The local Jacobian of an evaluated point: the law's derivatives,
+       * then those of the re-projection and of the node friction rows. */
+      void
+      local_jacobian(const ContactPoint &                 point,
+                     const TrilinosWrappers::MPI::Vector &state,
+                     const PointEvaluation &              e,
+                     FullMatrix<double> &                 K) const;
+
+      /** Newton on the pairing of a meshed master: the derivatives of the
+       * force direction and of N_m(xi_m) with the projection. */
+      void
+      add_reprojection_jacobian(const ContactPoint &                 point,
+                                const TrilinosWrappers::MPI::Vector &state,
+                                const PointEvaluation &              e,
+                                FullMatrix<double> &                 K) const;
+
+      /** The derivatives of the friction rows of a node-status pair, the
+       * status of each node fixed. */
+      void
+      add_node_friction_jacobian(const ContactPoint &    point,
+                                 const PointEvaluation &e,
+                                 FullMatrix<double> &   K) const;
 
       /** The law response of a point of a node-status pair. */
       PointResponse<dim>

@@ -1,0 +1,295 @@
+// Local rows of one evaluated contact point (formulation.md 4 and 5): the
+// residual -R and the Jacobian K on its unknowns e | m | lambda | Lambda.
+// The point path takes the law's response; the node path (statuses per
+// multiplier node) adds the friction rows of each node.
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <signorini/contact/contact_problem.h>
+
+#include "helpers.h"
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    template <int dim>
+    void
+    ContactProblem<dim>::local_residual(
+      const ContactPoint                  &point,
+      const TrilinosWrappers::MPI::Vector &state,
+      PointEvaluation                     &e,
+      Vector<double>                      &F) const
+    {
+      const auto        &face  = slave_faces[point.face];
+      const unsigned int p     = face.pair;
+      const auto        &r     = e.r;
+      const auto        &law   = e.law;
+      const auto        &psi   = point.psi;
+      const auto        &psi_c = point.psi_lambda;
+      const unsigned int n_e = e.n_e, n_m = e.n_m, n_l = e.n_l;
+
+      // Local dofs: e | m | lambda | Lambda.
+      e.n_f = e.fric ? n_l * (dim - 1) : 0;
+      e.o_c = n_e + n_m;
+      e.o_f = e.o_c + n_l;
+      e.n   = e.o_f + e.n_f;
+      const unsigned int o_c = e.o_c, o_f = e.o_f;
+
+      // Shape value and component of each displacement column, with the
+      // sign of d = u^e - u^m.
+      e.Nd.resize(n_e + n_m);
+      e.comp.resize(n_e + n_m);
+      for (unsigned int a = 0; a < n_e; ++a)
+        {
+          e.Nd[a]   = e.N_e[a];
+          e.comp[a] = face.u_comp[a];
+        }
+      for (unsigned int b = 0; b < n_m; ++b)
+        {
+          e.Nd[n_e + b]   = -point.N_m[b / dim];
+          e.comp[n_e + b] = b % dim;
+        }
+
+      const double w  = point.weight;
+      const double sc = rho_n[p]; // row scaling of lambda rows
+      const double sf = rho_t[p]; // row scaling of Lambda rows
+      F.reinit(e.n);
+      for (unsigned int a = 0; a < n_e + n_m; ++a)
+        F[a] = -w * e.Nd[a] * r.force[e.comp[a]];
+      // The Signorini row of each node: the point's law, or the node's
+      // status (node_status_row).
+      e.rows.resize(n_l);
+      for (unsigned int l = 0; l < n_l; ++l)
+        e.rows[l] =
+          e.by_node ?
+            node_status_row(node_active.at(face.lambda_dofs[l]) &&
+                              point.paired,
+                            point.paired ? e.s.gap : 0.,
+                            state[face.lambda_dofs[l]],
+                            e.s.normal,
+                            rho_n[p]) :
+            NodeStatusRow<dim>{r.r_c, r.drc_dd, 0.};
+      for (unsigned int l = 0; l < n_l; ++l)
+        {
+          F[o_c + l] = -sc * w * psi_c[l] * e.rows[l].r_c;
+          for (unsigned int k = 0; k < (e.fric ? dim - 1 : 0); ++k)
+            F[o_f + l * (dim - 1) + k] = -sf * w * psi[l] * r.r_f[k];
+        }
+      // Friction rows of a node-status pair, per node: free (or zero
+      // threshold) s Lambda_l; stick -mu lambda_l W_l (its weighted slip
+      // closed); slip (mu lambda_l / rho_t) D_l (Lambda_l - q_l),
+      // q_l = H_l / |H_l|; each point adds its share w psi_l.
+      for (unsigned int l = 0; l < e.node_data.size(); ++l)
+        {
+          const auto  &nf  = *e.node_data[l].status;
+          const double lam = e.node_data[l].lambda;
+          const auto  &L   = e.node_data[l].Lambda;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              const double r_f =
+                !nf.active ? law.free_friction_scale * L[k] :
+                nf.stick ?
+                             -law.mu * lam * e.slip_t[k] :
+                             law.mu * lam / law.rho_t * (L[k] - nf.H[k] / nf.H.norm());
+              F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::local_jacobian(
+      const ContactPoint                  &point,
+      const TrilinosWrappers::MPI::Vector &state,
+      const PointEvaluation               &e,
+      FullMatrix<double>                  &K) const
+    {
+      const unsigned int p     = slave_faces[point.face].pair;
+      const auto        &r     = e.r;
+      const auto        &psi   = point.psi;
+      const auto        &psi_c = point.psi_lambda;
+      const auto        &Nd    = e.Nd;
+      const auto        &comp  = e.comp;
+      const unsigned int n_u = e.n_e + e.n_m, n_l = e.n_l;
+      const unsigned int o_c = e.o_c, o_f = e.o_f;
+      const unsigned int n_t = e.fric ? dim - 1 : 0;
+      const double       w   = point.weight;
+      const double       sc  = rho_n[p]; // row scaling of lambda rows
+      const double       sf  = rho_t[p]; // row scaling of Lambda rows
+
+      K.reinit(e.n, e.n);
+      for (unsigned int a = 0; a < n_u; ++a)
+        {
+          for (unsigned int b = 0; b < n_u; ++b)
+            K(a, b) = w * Nd[a] * Nd[b] * r.dforce_dd[comp[a]][comp[b]];
+          for (unsigned int l = 0; l < n_l; ++l)
+            {
+              K(a, o_c + l) = w * Nd[a] * psi_c[l] * r.dforce_dlambda[comp[a]];
+              K(o_c + l, a) =
+                sc * w * psi_c[l] * Nd[a] * e.rows[l].drc_dd[comp[a]];
+              for (unsigned int k = 0; k < n_t; ++k)
+                {
+                  K(a, o_f + l * (dim - 1) + k) =
+                    w * Nd[a] * psi[l] * r.dforce_dLambda[k][comp[a]];
+                  K(o_f + l * (dim - 1) + k, a) =
+                    sf * w * psi[l] * Nd[a] * r.drf_dd[k][comp[a]];
+                }
+            }
+        }
+      if (point.reprojected)
+        add_reprojection_jacobian(point, state, e, K);
+      for (unsigned int l = 0; l < n_l; ++l)
+        for (unsigned int m = 0; m < n_l; ++m)
+          {
+            K(o_c + l, o_c + m) =
+              e.by_node ?
+                (l == m ? sc * w * psi_c[l] * e.rows[l].drc_dlambda_own : 0.) :
+                sc * w * psi[l] * psi[m] * r.drc_dlambda;
+            for (unsigned int k = 0; k < n_t; ++k)
+              {
+                K(o_f + l * (dim - 1) + k, o_c + m) =
+                  sf * w * psi[l] * psi[m] * r.drf_dlambda[k];
+                for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                  K(o_f + l * (dim - 1) + k, o_f + m * (dim - 1) + kk) =
+                    sf * w * psi[l] * psi[m] * r.drf_dLambda[k][kk];
+              }
+          }
+      add_node_friction_jacobian(point, e, K);
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::add_reprojection_jacobian(
+      const ContactPoint                  &point,
+      const TrilinosWrappers::MPI::Vector &state,
+      const PointEvaluation               &e,
+      FullMatrix<double>                  &K) const
+    {
+      // Newton on the pairing of a meshed master: the force f = (f . n) n
+      // turns with n, and the master rows follow N_m(xi_m); the gap needs
+      // nothing more (at the closest point, dg = n . (du^e - N_m du^m)
+      // exactly).
+      std::vector<Point<dim>> x_face;
+      Point<dim>              inside;
+      master_face_position(point.master_face, state, x_face, inside);
+      const auto D = face_projection_derivatives<dim>(e.x_e,
+                                                      x_face,
+                                                      point.xi_m,
+                                                      e.s.normal);
+      const unsigned int n_e = e.n_e, n_u = e.n_e + e.n_m;
+      const double       w   = point.weight;
+      const double       phi = e.r.force * e.s.normal;
+      for (unsigned int j = 0; j < n_u; ++j)
+        {
+          // Column j: slave DoF j (moves x_e by N_e e_c) or component c of
+          // master support point k.
+          const unsigned int c = e.comp[j];
+          Tensor<1, dim>     dn;
+          Tensor<1, dim - 1> dxi;
+          const unsigned int k = j < n_e ? 0 : (j - n_e) / dim;
+          for (unsigned int i = 0; i < dim; ++i)
+            dn[i] = j < n_e ? e.N_e[j] * D.dn_dp[i][c] : D.dn_dX[k][i][c];
+          for (unsigned int a = 0; a < dim - 1; ++a)
+            dxi[a] = j < n_e ? e.N_e[j] * D.dxi_dp[a][c] : D.dxi_dX[k][a][c];
+          for (unsigned int a = 0; a < n_u; ++a)
+            {
+              const double dNd = a < n_e ? 0. : -(D.dN[(a - n_e) / dim] * dxi);
+              K(a, j) += w * (dNd * e.r.force[e.comp[a]] +
+                              e.Nd[a] * phi * dn[e.comp[a]]);
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::add_node_friction_jacobian(
+      const ContactPoint    &point,
+      const PointEvaluation &e,
+      FullMatrix<double>    &K) const
+    {
+      const unsigned int p     = slave_faces[point.face].pair;
+      const auto        &law   = e.law;
+      const auto        &s     = e.s;
+      const auto        &psi_c = point.psi_lambda;
+      const auto        &Nd    = e.Nd;
+      const auto        &comp  = e.comp;
+      const unsigned int n_u   = e.n_e + e.n_m;
+      const double       w     = point.weight;
+      const double       sf    = rho_t[p]; // row scaling of Lambda rows
+      for (unsigned int l = 0; l < e.node_data.size(); ++l)
+        {
+          const auto        &nf  = *e.node_data[l].status;
+          const double       lam = e.node_data[l].lambda;
+          const auto        &L   = e.node_data[l].Lambda;
+          const double       wl  = sf * w * psi_c[l];
+          const unsigned int of  = e.o_f + l * (dim - 1);
+          if (!nf.active)
+            {
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                K(of + k, of + k) += wl * law.free_friction_scale;
+              continue;
+            }
+          if (point.paired)
+            {
+              // Displacement rows: d/dlambda_l, d/dLambda_l.
+              Tensor<1, dim> TL;
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                TL += L[k] * s.tangents[k];
+              for (unsigned int a = 0; a < n_u; ++a)
+                {
+                  K(a, e.o_c + l) +=
+                    w * Nd[a] * (-law.mu * psi_c[l] * TL[comp[a]]);
+                  for (unsigned int k = 0; k < dim - 1; ++k)
+                    K(a, of + k) +=
+                      w * Nd[a] *
+                      (-law.mu * psi_c[l] * lam * s.tangents[k][comp[a]]);
+                }
+            }
+          if (nf.stick)
+            {
+              if (point.paired)
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  {
+                    for (unsigned int a = 0; a < n_u; ++a)
+                      K(of + k, a) += wl * (-law.mu * lam) *
+                                      s.tangents[k][comp[a]] * Nd[a];
+                    K(of + k, e.o_c + l) += wl * (-law.mu * e.slip_t[k]);
+                  }
+              continue;
+            }
+          // Slip: K_B = (I - q q) / |H|, dH/dLambda_l = I,
+          // dH/du = rho_t / D_l dW/du. Frozen in slip: q fixed, K_B = 0.
+          const double       nH = nf.H.norm();
+          Tensor<2, dim - 1> KB;
+          if (!nf.frozen)
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                KB[k][kk] = ((k == kk) - nf.H[k] * nf.H[kk] / (nH * nH)) / nH;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                K(of + k, of + kk) +=
+                  wl * law.mu * lam / law.rho_t * ((k == kk) - KB[k][kk]);
+              K(of + k, e.o_c + l) +=
+                wl * law.mu / law.rho_t * (L[k] - nf.H[k] / nH);
+              if (point.paired)
+                for (unsigned int a = 0; a < n_u; ++a)
+                  {
+                    double KBT = 0;
+                    for (unsigned int kk = 0; kk < dim - 1; ++kk)
+                      KBT += KB[k][kk] * s.tangents[kk][comp[a]];
+                    K(of + k, a) += wl * (-law.mu * lam) * KBT * Nd[a];
+                  }
+            }
+        }
+    }
+
+
+    template class ContactProblem<2>;
+    template class ContactProblem<3>;
+  } // namespace Contact
+} // namespace Signorini
