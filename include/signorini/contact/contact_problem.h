@@ -550,6 +550,13 @@ namespace Signorini
         // mortar cuts see the faces in the same order on any rank count.
         std::vector<unsigned int> key;
         int own_cell = -1; // index into own_master_cells, -1: another rank's
+
+        template <class Archive>
+        void
+        serialize(Archive &ar, const unsigned int)
+        {
+          ar &pair &X &dofs &inside &key &own_cell;
+        }
       };
 
       struct ContactPoint
@@ -624,7 +631,66 @@ namespace Signorini
         bool                    exclude_contact  = false;
         bool                    exclude_friction = false;
         std::vector<std::pair<types::global_dof_index, double>> hanging;
+
+        template <class Archive>
+        void
+        serialize(Archive &ar, const unsigned int)
+        {
+          ar &lambda &friction &pair &exclude_contact &exclude_friction
+            &hanging;
+        }
       };
+
+      // A constraint line of a master DoF: the DoF and its entries.
+      using MasterLine =
+        std::pair<types::global_dof_index,
+                  std::vector<std::pair<types::global_dof_index, double>>>;
+
+      // What setup() collects (surfaces.cc).
+      struct SurfaceScan;
+      // Counts setup() prints.
+      struct SetupCounts
+      {
+        unsigned int n_excluded_contact = 0, n_excluded_friction = 0,
+                     n_hanging = 0;
+      };
+      /** The slave faces (all seen, owned ones kept), the slave nodes and
+       * the owned master faces of this rank's boundary. */
+      SurfaceScan
+      scan_boundary(const AffineConstraints<double> &u_constraints);
+      void
+      add_slave_face(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                     const unsigned int                                    f,
+                     const unsigned int                                    p,
+                     const std::vector<types::global_dof_index> &cell_dofs,
+                     SurfaceScan                                &scan);
+      void
+      add_master_face(
+        const typename DoFHandler<dim>::active_cell_iterator &cell,
+        const unsigned int                                    f,
+        const unsigned int                                    p,
+        const std::vector<types::global_dof_index>           &cell_dofs,
+        const AffineConstraints<double>                      &u_constraints,
+        SurfaceScan                                          &scan);
+      /** rho_n, rho_t, p_ref, the face size and E per pair. */
+      void
+      set_coefficients(const SurfaceScan &scan);
+      /** Numbers the multipliers of the owned slave nodes after the
+       * displacements, decides their exclusions and hanging weights, and
+       * gathers every node's from all ranks into 'nodes'. */
+      SetupCounts
+      number_multipliers(const SurfaceScan               &scan,
+                         const IndexSet                  &owned_u,
+                         const AffineConstraints<double> &u_constraints);
+      /** Master faces and the constraint lines of their DoFs from all
+       * ranks; the ghost index sets 'extra' and 'multiplier_ghosts'. */
+      void
+      gather_master_faces(SurfaceScan &scan);
+      /** Multiplier DoFs, exclusions and dual basis of each slave face. */
+      void
+      finish_slave_faces();
+      void
+      print_setup(ConditionalOStream &pcout, const SetupCounts &counts) const;
 
       LawParameters
       law_parameters(const unsigned int pair) const;
@@ -910,10 +976,7 @@ namespace Signorini
       std::vector<typename DoFHandler<dim>::active_cell_iterator>
         own_master_cells;
       // Constraint lines of master DoFs, from their owners.
-      std::vector<std::pair<types::global_dof_index,
-                            std::vector<std::pair<types::global_dof_index,
-                                                  double>>>>
-        master_lines;
+      std::vector<MasterLine> master_lines;
 
       std::vector<ContactPoint> points;
 
