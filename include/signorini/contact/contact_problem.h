@@ -18,9 +18,11 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <signorini/contact/contact_law.h>
+#include <signorini/contact/contact_point.h>
 #include <signorini/contact/integration_rule.h>
 #include <signorini/contact/obstacles/interface.h>
 #include <signorini/contact/projection.h>
+#include <signorini/contact/surface_data.h>
 #include <signorini/core/parameters.h>
 #include <signorini/bulk/assembler.h>
 
@@ -58,9 +60,13 @@
  *                           constraint lines
  *   pairing.cc              search, projection, mortar segmentation
  *   statuses.cc             statuses per node, initial multipliers
- *   active_set_history.cc   anti-cycling, freezes, releases, extrapolation
- *   assembly.cc             the contact residual and Jacobian
+ *   active_set_history.cc   anti-cycling, freezes, releases, extrapolation,
+ *                           the status record of an evaluated point
+ *   assembly.cc             the point loop: point state and law response
+ *   local_rows.cc           local residual and Jacobian of a point (point
+ *                           path, re-projection, node friction rows)
  *   output.cc               summaries, point records, CSV, fields, transfer
+ * and its data in surface_data.h (faces, nodes) and contact_point.h.
  */
 namespace Signorini
 {
@@ -92,6 +98,13 @@ namespace Signorini
     template <int dim>
     class ContactProblem
     {
+      // The data of surfaces and points (surface_data.h, contact_point.h).
+      using SlaveFace    = Contact::SlaveFace<dim>;
+      using MasterFace   = Contact::MasterFace<dim>;
+      using ContactPoint = Contact::ContactPoint<dim>;
+      using NodeFriction = Contact::NodeFriction<dim>;
+      using NodeCycle    = Contact::NodeCycle<dim>;
+
     public:
       ContactProblem(const Parameters &     parameters,
                      const FESystem<dim> &  fe,
@@ -488,163 +501,7 @@ namespace Signorini
       }
 
     private:
-      // A node frozen by anti-cycling (frozen = true) keeps its stick or
-      // slip status; frozen in slip, H holds the frozen unit direction and
-      // the slip row does not depend on the node's H.
-      struct NodeFriction
-      {
-        bool               active = false;
-        bool               stick  = false;
-        bool               frozen = false;
-        Tensor<1, dim - 1> H;
-      };
-      // Anti-cycling of the friction status per node, as for points
-      // (start_newton_solve()): the status of two iterates back, the cycles
-      // and changes in this Newton solve, the freeze (stick, or slip along
-      // q) and what the plain law says under it.
-      struct NodeCycle
-      {
-        NodeFriction       before;
-        unsigned int       cycles = 0, changes = 0;
-        bool               was_frozen = false, freeze = false;
-        bool               freeze_stick = false, refrozen = false;
-        Tensor<1, dim - 1> q;
-        bool               plain_violated = false;
-        NodeFriction       plain;
-      };
-      struct SlaveFace
-      {
-        typename DoFHandler<dim>::active_cell_iterator cell;
-        unsigned int                                   face;
-        unsigned int                                   pair;
-        std::vector<unsigned int>            u_local;    // cell dofs on face
-        std::vector<unsigned int>            node_local; // comp-0 cell dofs
-        std::vector<types::global_dof_index> lambda_dofs;
-        std::vector<types::global_dof_index> friction_dofs; // node-major
-        Tensor<1, dim>                       outward_normal; // at centre
-        // The face map: reference node positions in FE_Q<dim-1> order
-        // (as for master faces); k_node[k] = l, the node_local index of
-        // face node k; u_node[a], u_comp[a]: node and component of u_local[a];
-        // node_dofs[l * dim + c]: displacement DoF of node l, component c.
-        std::vector<Point<dim>>              X;
-        std::vector<unsigned int>            k_node, u_node, u_comp;
-        std::vector<types::global_dof_index> node_dofs;
-        // Node-status pairs: the dual (biorthogonal) multiplier basis,
-        // psi~_l = sum_m dual[l * n + m] psi_m with n = node_local.size(),
-        // so that the integral of psi~_l psi_m over the face is
-        // delta_lm D_l; empty: the multipliers use psi.
-        std::vector<double> dual;
-        // Per node: excluded from contact (a Dirichlet condition along the
-        // normal) or from friction (one along a tangent, or from contact).
-        std::vector<bool> excluded_contact, excluded_friction;
-      };
 
-      struct MasterFace
-      {
-        unsigned int                         pair;
-        std::vector<Point<dim>>              X; // reference node positions
-        std::vector<types::global_dof_index> dofs; // node-major, dim each
-        Point<dim>                           inside; // reference cell centre
-        // Partition-independent identity (the cell's CellId and the face
-        // number): master_faces is sorted by it, so that the search and the
-        // mortar cuts see the faces in the same order on any rank count.
-        std::vector<unsigned int> key;
-        int own_cell = -1; // index into own_master_cells, -1: another rank's
-
-        template <class Archive>
-        void
-        serialize(Archive &ar, const unsigned int)
-        {
-          ar &pair &X &dofs &inside &key &own_cell;
-        }
-      };
-
-      struct ContactPoint
-      {
-        unsigned int   face; // index into slave_faces
-        unsigned int   q;    // index among the face's points
-        // Slave data, fixed for the point's lifetime: position xi on the
-        // unit face, psi_l(xi) in node_local order, reference position,
-        // weight (rule weight x reference Jacobian) and outward normal.
-        Point<dim - 1>      xi;
-        std::vector<double> psi;
-        std::vector<double> psi_lambda; // multiplier basis: psi or psi~
-        Point<dim>          x_ref;
-        double              weight = 0;
-        Tensor<1, dim>      slave_normal;
-        int segment_master = -1; // mortar: master face of the point's piece
-        bool           paired      = false;
-        int            master_face = -1; // -1: rigid or unpaired
-        std::vector<double> N_m;         // master shape values at xi_m
-        Point<dim - 1> xi_m;             // projection on the master face
-        // Projected again at the last evaluation (meshed master, Newton on
-        // the pairing): its derivatives enter the Jacobian.
-        bool reprojected = false;
-        Tensor<1, dim> normal;
-        std::array<Tensor<1, dim>, dim - 1> tangents;
-        unsigned int   tangent_axis = 0; // 3D axis of T, fixed at pairing
-        Point<dim>     x_m_rigid;
-        Tensor<1, dim> rigid_increment;
-        double         lambda_frozen = 0;
-        // Last evaluation:
-        PointStatus        status = PointStatus::free;
-        bool               friction_active = false; // law branch, 3.3
-        // Anti-cycling history of the current Newton solve.
-        PointStatus    status_before = PointStatus::free; // iterate k-2
-        Tensor<1, dim> direction_before;  // slip direction at k-2
-        unsigned int   cycles     = 0;
-        unsigned int   changes    = 0;
-        bool           was_frozen = false;
-        bool           freeze_contact = false;
-        Tensor<1, dim> frozen_slip_direction; // zero: not frozen
-        bool           freeze_stick = false;
-        // Release extrapolation: open for the next solve (release),
-        // released that way at the last solve (extrapolated), closed again
-        // after such a release (keep_closed: not again in this solve).
-        bool release = false, extrapolated = false, keep_closed = false;
-        // Geometric loop: converged statuses at the end of the last two
-        // geometric iterations of the step; frozen for the step.
-        PointStatus    geo_status_1 = PointStatus::free;
-        PointStatus    geo_status_2 = PointStatus::free;
-        Tensor<1, dim> geo_direction_1, geo_direction_2;
-        bool           geometric_freeze = false;
-        // What the plain law said at the last evaluation of a frozen point,
-        // and whether the point was frozen a second time in this solve.
-        PointStatus    plain_status = PointStatus::free;
-        Tensor<1, dim> plain_direction;
-        bool           plain_violated = false;
-        bool           refrozen       = false;
-        // Master faces of the last two pairings of the step (-1: none yet),
-        // and the face a pairing 2-cycle pinned the point to.
-        int geo_face_1 = -1, geo_face_2 = -1, pinned_face = -1;
-        Tensor<1, dim>     slip_direction;          // h / |h| if slipping
-        double             gap = 0, lambda = 0;
-        Tensor<1, dim - 1> Lambda, slip;
-        Tensor<1, dim>     force;
-      };
-
-      struct NodeInfo
-      {
-        types::global_dof_index lambda   = numbers::invalid_dof_index;
-        types::global_dof_index friction = numbers::invalid_dof_index;
-        unsigned int            pair             = 0;
-        bool                    exclude_contact  = false;
-        bool                    exclude_friction = false;
-        std::vector<std::pair<types::global_dof_index, double>> hanging;
-
-        template <class Archive>
-        void
-        serialize(Archive &ar, const unsigned int)
-        {
-          ar &lambda &friction &pair &exclude_contact &exclude_friction
-            &hanging;
-        }
-      };
-
-      // A constraint line of a master DoF: the DoF and its entries.
-      using MasterLine =
-        std::pair<types::global_dof_index,
-                  std::vector<std::pair<types::global_dof_index, double>>>;
 
       // What setup() collects (surfaces.cc).
       struct SurfaceScan;

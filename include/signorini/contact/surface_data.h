@@ -1,0 +1,131 @@
+#ifndef signorini_contact_surface_data_h
+#define signorini_contact_surface_data_h
+
+// The data of the contact surfaces that ContactProblem keeps: slave and
+// master faces, slave nodes with their multipliers, the friction status of
+// a multiplier node and its anti-cycling history.
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+#include <deal.II/dofs/dof_handler.h>
+
+#include <utility>
+#include <vector>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using namespace dealii;
+
+    /** A slave face of this rank: its cell, DoFs, multipliers and face map. */
+    template <int dim>
+    struct SlaveFace
+    {
+      typename DoFHandler<dim>::active_cell_iterator cell;
+      unsigned int                                   face;
+      unsigned int                                   pair;
+      std::vector<unsigned int>            u_local;    // cell dofs on face
+      std::vector<unsigned int>            node_local; // comp-0 cell dofs
+      std::vector<types::global_dof_index> lambda_dofs;
+      std::vector<types::global_dof_index> friction_dofs; // node-major
+      Tensor<1, dim>                       outward_normal; // at centre
+      // The face map: reference node positions in FE_Q<dim-1> order
+      // (as for master faces); k_node[k] = l, the node_local index of
+      // face node k; u_node[a], u_comp[a]: node and component of u_local[a];
+      // node_dofs[l * dim + c]: displacement DoF of node l, component c.
+      std::vector<Point<dim>>              X;
+      std::vector<unsigned int>            k_node, u_node, u_comp;
+      std::vector<types::global_dof_index> node_dofs;
+      // Node-status pairs: the dual (biorthogonal) multiplier basis,
+      // psi~_l = sum_m dual[l * n + m] psi_m with n = node_local.size(),
+      // so that the integral of psi~_l psi_m over the face is
+      // delta_lm D_l; empty: the multipliers use psi.
+      std::vector<double> dual;
+      // Per node: excluded from contact (a Dirichlet condition along the
+      // normal) or from friction (one along a tangent, or from contact).
+      std::vector<bool> excluded_contact, excluded_friction;
+    };
+
+
+    /** A master face (of any rank): node positions, DoFs and identity. */
+    template <int dim>
+    struct MasterFace
+    {
+      unsigned int                         pair;
+      std::vector<Point<dim>>              X; // reference node positions
+      std::vector<types::global_dof_index> dofs; // node-major, dim each
+      Point<dim>                           inside; // reference cell centre
+      // Partition-independent identity (the cell's CellId and the face
+      // number): master_faces is sorted by it, so that the search and the
+      // mortar cuts see the faces in the same order on any rank count.
+      std::vector<unsigned int> key;
+      int own_cell = -1; // index into own_master_cells, -1: another rank's
+
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &pair &X &dofs &inside &key &own_cell;
+      }
+    };
+
+
+    /** A constraint line of a master DoF: the DoF and its entries. */
+    using MasterLine =
+      std::pair<types::global_dof_index,
+                std::vector<std::pair<types::global_dof_index, double>>>;
+
+
+    /** A slave node: its multiplier DoFs, pair, exclusions and hanging-node
+     * weights. */
+    struct NodeInfo
+    {
+      types::global_dof_index lambda   = numbers::invalid_dof_index;
+      types::global_dof_index friction = numbers::invalid_dof_index;
+      unsigned int            pair             = 0;
+      bool                    exclude_contact  = false;
+      bool                    exclude_friction = false;
+      std::vector<std::pair<types::global_dof_index, double>> hanging;
+
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &lambda &friction &pair &exclude_contact &exclude_friction
+          &hanging;
+      }
+    };
+
+
+    // A node frozen by anti-cycling (frozen = true) keeps its stick or
+    // slip status; frozen in slip, H holds the frozen unit direction and
+    // the slip row does not depend on the node's H.
+    template <int dim>
+    struct NodeFriction
+    {
+      bool               active = false;
+      bool               stick  = false;
+      bool               frozen = false;
+      Tensor<1, dim - 1> H;
+    };
+    // Anti-cycling of the friction status per node, as for points
+    // (start_newton_solve()): the status of two iterates back, the cycles
+    // and changes in this Newton solve, the freeze (stick, or slip along
+    // q) and what the plain law says under it.
+    template <int dim>
+    struct NodeCycle
+    {
+      NodeFriction<dim>  before;
+      unsigned int       cycles = 0, changes = 0;
+      bool               was_frozen = false, freeze = false;
+      bool               freeze_stick = false, refrozen = false;
+      Tensor<1, dim - 1> q;
+      bool               plain_violated = false;
+      NodeFriction<dim>  plain;
+    };
+  } // namespace Contact
+} // namespace Signorini
+
+#endif
