@@ -195,53 +195,27 @@ namespace Signorini
       // ---------------------------------------------------------------
       // Normal part: sections 3.1, 4 (L_c rows), 5 ("Contact").
       // ---------------------------------------------------------------
-      if (!parameters.penalty)
-        {
-          // Section 3.1: contact iff lambda_aug < 0 (strict: lambda_aug == 0
-          // is the kink, assigned to the free side).
-          const double lambda_aug = state.lambda - rho_n * state.gap;
-          response.in_contact =
-            ((lambda_aug < 0.) || state.freeze_contact) && !state.release;
+      // Section 3.1: contact iff lambda_aug < 0 (strict: lambda_aug == 0
+      // is the kink, assigned to the free side).
+      const double lambda_aug = state.lambda - rho_n * state.gap;
+      response.in_contact =
+        ((lambda_aug < 0.) || state.freeze_contact) && !state.release;
 
-          if (response.in_contact)
-            {
-              // L_c^e = -w N^e lambda_aug n, L_c^c = -w psi g.
-              response.force          = -lambda_aug * n;
-              response.dforce_dd      = rho_n * outer_product(n, n);
-              response.dforce_dlambda = -n;
-              response.r_c            = -state.gap;
-              response.drc_dd         = -n;
-              response.drc_dlambda    = 0.;
-            }
-          else
-            {
-              // L_c^c = -w psi lambda / rho_n drives lambda to 0 (K_cc).
-              response.r_c         = -state.lambda / rho_n;
-              response.drc_dlambda = -1. / rho_n;
-            }
+      if (response.in_contact)
+        {
+          // L_c^e = -w N^e lambda_aug n, L_c^c = -w psi g.
+          response.force          = -lambda_aug * n;
+          response.dforce_dd      = rho_n * outer_product(n, n);
+          response.dforce_dlambda = -n;
+          response.r_c            = -state.gap;
+          response.drc_dd         = -n;
+          response.drc_dlambda    = 0.;
         }
       else
         {
-          // Penalty variant (section 4, last paragraph), eps_n = rho_n. The
-          // force eps_n g n plays the role of -lambda_aug n, so it has the
-          // same sign convention (a pressure pushing the slave out of the
-          // master, +n in the residual since R = F_int - F_ext + R_c). It is
-          // active iff that pressure is positive, g > 0. The lambda row
-          //   r_c = -(lambda + chi_c eps_n g) / eps_n
-          // only post-processes lambda -> -eps_n max(g, 0) with the sign of
-          // the Lagrangian law (lambda <= 0 in compression) and keeps the
-          // lambda block nonsingular; the force does not depend on lambda.
-          response.in_contact = (state.gap > 0.) && !state.release;
+          // L_c^c = -w psi lambda / rho_n drives lambda to 0 (K_cc).
           response.r_c         = -state.lambda / rho_n;
           response.drc_dlambda = -1. / rho_n;
-
-          if (response.in_contact)
-            {
-              response.force     = rho_n * state.gap * n;
-              response.dforce_dd = rho_n * outer_product(n, n);
-              response.r_c -= state.gap;
-              response.drc_dd = -n;
-            }
         }
 
       response.status =
@@ -335,7 +309,7 @@ namespace Signorini
               // T^T P = T^T since T is tangent.
               response.drf_dd[k] = -mu_lf * T[k];
               // K_fc (stick) = -mu T^T v; vanishes at convergence (v = 0).
-              if (lambda_depends && parameters.threshold_coupling)
+              if (lambda_depends)
                 response.drf_dlambda[k] = -mu * (T[k] * v);
             }
         }
@@ -374,7 +348,7 @@ namespace Signorini
                 response.drf_dLambda[k][l] =
                   mu_lf / rho_t * ((k == l ? 1. : 0.) - T[k] * (K_B * T[l]));
               // K_fc (slip) = (mu / rho_t) T^T (T Lambda - h / |h|).
-              if (lambda_depends && parameters.threshold_coupling)
+              if (lambda_depends)
                 response.drf_dlambda[k] = mu / rho_t * residual_k;
             }
         }

@@ -135,8 +135,6 @@ namespace Signorini
       law.rho_t              = rho_t[p];
       law.mu                 = parameters.contact.pairs[p].friction;
       law.threshold_newton   = !parameters.contact.frozen_threshold;
-      law.threshold_coupling = parameters.contact.threshold_coupling;
-      law.penalty            = parameters.contact.penalty;
       law.zero_threshold     = 1e-12 * youngs[p];
       if (law.mu > 0)
         {

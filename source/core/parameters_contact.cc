@@ -73,8 +73,7 @@ namespace Signorini
                       "of the slave cells (or of the master cells when the "
                       "master body is softer) and h the mean slave face "
                       "size. It "
-                      "changes the convergence path, not the solution. With "
-                      "'Penalty = true' it scales the penalty stiffness.");
+                      "changes the convergence path, not the solution.");
     prm.declare_entry("Tangential coefficient",
                       "1",
                       Patterns::Double(1e-300),
@@ -203,17 +202,6 @@ namespace Signorini
                       "face at every iterate, with the derivatives of the "
                       "projection in the Jacobian; the geometric loop only "
                       "changes faces.");
-    prm.declare_entry("Threshold coupling",
-                      "true",
-                      Patterns::Bool(),
-                      "Keep K_fc, the derivative of the friction rows with "
-                      "respect to lambda (exact Jacobian; code_aster drops "
-                      "it).");
-    prm.declare_entry("Penalty",
-                      "false",
-                      Patterns::Bool(),
-                      "Penalty variant of the normal law: the contact force "
-                      "is rho_n g; lambda is post-processed.");
     prm.declare_entry("Projection tolerance",
                       "0.05",
                       Patterns::Double(0),
@@ -311,8 +299,6 @@ namespace Signorini
     newton_geometry = prm.get("Geometric linearisation") != "fixed point";
     newton_geometry_all =
       prm.get("Geometric linearisation") == "newton";
-    threshold_coupling       = prm.get_bool("Threshold coupling");
-    penalty                  = prm.get_bool("Penalty");
     projection_tolerance     = prm.get_double("Projection tolerance");
     geometric_tolerance      = prm.get_double("Geometric tolerance");
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");

@@ -43,8 +43,7 @@ namespace Signorini
     struct LawParameters
     {
       /**
-       * Normal augmentation coefficient rho_n [Pa/m], > 0. In the penalty
-       * variant this is the penalty stiffness eps_n [Pa/m].
+       * Normal augmentation coefficient rho_n [Pa/m], > 0.
        */
       double rho_n;
 
@@ -75,23 +74,6 @@ namespace Signorini
        * 3.3, the default); false: lambda_f = PointState::lambda_f_frozen.
        */
       bool threshold_newton = true;
-
-      /**
-       * Only meaningful if threshold_newton. true: keep K_fc (dr_f/dlambda)
-       * of section 5, giving the exact Jacobian. false: drop K_fc as
-       * code_aster does (it vanishes at the solution). K_ec / K_mc
-       * (the mu P_B(h) part of dforce/dlambda) are always kept: they do not
-       * vanish at the solution and are part of code_aster's matrix too.
-       */
-      bool threshold_coupling = true;
-
-      /**
-       * Penalty variant of section 4 for the normal part: force = eps_n g n
-       * with eps_n = rho_n, active iff g > 0; lambda becomes a
-       * post-processed value driven to -eps_n max(g, 0). Friction keeps the
-       * augmented Lagrangian law with lambda_f as above.
-       */
-      bool penalty = false;
 
       /**
        * Weight of the friction law of a point whose friction is inactive
@@ -220,7 +202,7 @@ namespace Signorini
       PointStatus status;
 
       /**
-       * chi_c of section 3.1 (penalty: g > 0).
+       * chi_c of section 3.1.
        */
       bool in_contact;
 

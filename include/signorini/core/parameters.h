@@ -328,8 +328,6 @@ namespace Signorini
     // newton_geometry: 'auto' or 'newton'; newton_geometry_all: 'newton'
     // explicitly (also frictional rigid pairs and meshed masters).
     bool newton_geometry, newton_geometry_all;
-    bool                               threshold_coupling;
-    bool                               penalty;
     double                             projection_tolerance;
     double                             geometric_tolerance;
     unsigned int                       max_geometric_iterations;
