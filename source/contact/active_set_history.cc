@@ -182,8 +182,6 @@ namespace Signorini
     unsigned int
     ContactProblem<dim>::extrapolate_releases()
     {
-      if (!parameters.contact.release_extrapolation)
-        return 0;
       const unsigned int n_pairs = parameters.contact.pairs.size();
       // The status carriers of every pair (points; multiplier nodes on
       // node-status pairs) by class at this iterate: tension (closed in

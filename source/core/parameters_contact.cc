@@ -237,19 +237,6 @@ namespace Signorini
                       "before stays on that face, for the rest of the load "
                       "step. 0: never freeze.");
     prm.declare_entry(
-      "Release extrapolation",
-      "true",
-      Patterns::Bool(),
-      "Active-set search on frictionless pairs (doc/robustness.md, "
-      "'Release extrapolation'): while a contact zone only shrinks, a "
-      "point (or multiplier node) still in compression whose mirror image "
-      "across its nearest point that went into tension lies in that "
-      "tension band is opened for the next solve too (the band would "
-      "halve per solve otherwise): at most as many as the band holds and "
-      "half of those in compression, the nearest first; one that closes "
-      "again is not opened early again in that Newton solve. The "
-      "converged state is unchanged. false: plain primal-dual active set.");
-    prm.declare_entry(
       "Pairing at status changes",
       "false",
       Patterns::Bool(),
@@ -303,7 +290,6 @@ namespace Signorini
     geometric_tolerance      = prm.get_double("Geometric tolerance");
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
     freeze_after_cycles      = prm.get_integer("Freeze after cycles");
-    release_extrapolation    = prm.get_bool("Release extrapolation");
     pairing_at_status_changes = prm.get_bool("Pairing at status changes");
     pairs.resize(counts.n_pairs);
     for (unsigned int k = 0; k < counts.n_pairs; ++k)
