@@ -68,142 +68,173 @@ namespace Signorini
       if (mortar)
         segment(state, x_master, tree);
 
-      const auto        &contact      = parameters.contact;
-      const unsigned int freeze_after = contact.freeze_after_cycles;
-      unsigned int       n_pinned     = 0;
-      n_deep                          = 0;
+      unsigned int n_pinned = 0;
+      n_deep                = 0;
       pairings_in_step += within_newton ? 0 : 1;
       for (auto &point : points)
-        {
-          const auto        &face   = slave_faces[point.face];
-          const unsigned int p      = face.pair;
-          const Point<dim>   x_e    = slave_position(point, state);
-          double             lambda = 0;
-          for (unsigned int l = 0; l < face.node_local.size(); ++l)
-            lambda += state[face.lambda_dofs[l]] * point.psi[l];
-          point.lambda_frozen = lambda;
-
-          point.paired      = false;
-          point.master_face = -1;
-          // Pairs the point with master face m if its projection onto m
-          // converges within the tolerance (also just outside the face).
-          const auto pair_with_face = [&](const int m) {
-            const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
-            if (!proj.converged ||
-                proj.violation > contact.projection_tolerance)
-              return false;
-            point.paired      = true;
-            point.master_face = m;
-            take_projection(point, proj);
-            return true;
-          };
-          if (obstacles[p])
-            {
-              const auto projection = obstacles[p]->project(x_e);
-              point.paired          = true;
-              point.normal          = projection.normal;
-              point.x_m_rigid       = projection.x_m;
-              // The increment since the step start of the obstacle's
-            // material point now at x^m.
-            point.rigid_increment =
-              projection.x_m -
-              motion_at_start[p].apply(
-                obstacles[p]->get_motion().inverse(projection.x_m));
-            }
-          else if (point.pinned_face >= 0 && !mortar)
-            {
-              // Pinned by a pairing 2-cycle: the face is kept while the
-              // projection onto it stays within the tolerance.
-              if (!pair_with_face(point.pinned_face))
-                point.pinned_face = -1;
-            }
-          else if (point.segment_master >= 0)
-            // Mortar: the master face of the point's piece (the search
-            // below only if the projection leaves that face).
-            pair_with_face(point.segment_master);
-          if (!obstacles[p] && !point.paired)
-            {
-              BoundingBox<dim> query(std::make_pair(x_e, x_e));
-              query.extend(0.5 * face_size[p]);
-              const auto hits = faces_meeting(tree, query);
-              // Inside projections first (closest), then the smallest
-              // violation within the tolerance.
-              double best_inside = std::numeric_limits<double>::max();
-              double best_violation =
-                contact.projection_tolerance * (1 + 1e-12);
-              FaceProjection<dim> best;
-              int                 best_face      = -1;
-              bool                best_is_inside = false;
-              for (const unsigned int m : hits)
-                {
-                  if (master_faces[m].pair != p)
-                    continue;
-                  const auto proj =
-                    project_onto_face(x_e, x_master[m], inside[m]);
-                  if (!proj.converged)
-                    continue;
-                  const double distance = x_e.distance(proj.x_m);
-                  if (proj.inside)
-                    {
-                      if (distance < best_inside)
-                        {
-                          best_inside    = distance;
-                          best           = proj;
-                          best_face      = m;
-                          best_is_inside = true;
-                        }
-                    }
-                  else if (!best_is_inside && proj.violation < best_violation)
-                    {
-                      best_violation = proj.violation;
-                      best           = proj;
-                      best_face      = m;
-                    }
-                }
-              if (best_face >= 0)
-                {
-                  point.paired      = true;
-                  point.master_face = best_face;
-                  take_projection(point, best);
-                }
-              else
-                pair_deep(point, x_e, x_master, inside, tree);
-            }
-          // Pairing 2-cycle: back on the face of two pairings before.
-          if (!within_newton && !mortar && !obstacles[p] &&
-              point.pinned_face < 0 && freeze_after > 0 &&
-              point.master_face >= 0 && pairings_in_step >= 3 &&
-              point.master_face == point.geo_face_2 &&
-              point.master_face != point.geo_face_1)
-            {
-              point.pinned_face = point.master_face;
-              ++n_pinned;
-            }
-          if (!within_newton)
-            {
-              point.geo_face_2 = point.geo_face_1;
-              point.geo_face_1 = point.master_face;
-            }
-          // The contact normal points into the master (formulation.md 2),
-          // along the slave's outward normal.
-          if (!point.paired)
-            point.normal = point.slave_normal;
-          // Normal choice (nodal rule only, checked at input).
-          if (contact.normal == NormalChoice::slave)
-            point.normal = point.slave_normal;
-          else if (contact.normal == NormalChoice::average && point.paired)
-            {
-              point.normal += point.slave_normal;
-              point.normal /= point.normal.norm();
-            }
-          // The 3D crossing axis of T is kept until the next pairing, so
-          // that T stays smooth in n when n follows the iterate.
-          point.tangent_axis = tangent_axis<dim>(point.normal);
-          point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);
-        }
+        n_pinned +=
+          pair_point(point, state, x_master, inside, tree, within_newton);
       n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
       n_deep         = Utilities::MPI::sum(n_deep, comm);
+      set_multiplier_basis();
+    }
 
+
+    template <int dim>
+    bool
+    ContactProblem<dim>::pair_point(
+      ContactPoint                                           &point,
+      const TrilinosWrappers::MPI::Vector                    &state,
+      const std::vector<std::vector<Point<dim>>>             &x_master,
+      const std::vector<Point<dim>>                          &inside,
+      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree,
+      const bool                                              within_newton)
+    {
+      const auto        &contact      = parameters.contact;
+      const unsigned int freeze_after = contact.freeze_after_cycles;
+      const auto        &face         = slave_faces[point.face];
+      const unsigned int p            = face.pair;
+      const Point<dim>   x_e          = slave_position(point, state);
+      double             lambda       = 0;
+      for (unsigned int l = 0; l < face.node_local.size(); ++l)
+        lambda += state[face.lambda_dofs[l]] * point.psi[l];
+      point.lambda_frozen = lambda;
+
+      point.paired      = false;
+      point.master_face = -1;
+      // Pairs the point with master face m if its projection onto m
+      // converges within the tolerance (also just outside the face).
+      const auto pair_with_face = [&](const int m) {
+        const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
+        if (!proj.converged || proj.violation > contact.projection_tolerance)
+          return false;
+        point.paired      = true;
+        point.master_face = m;
+        take_projection(point, proj);
+        return true;
+      };
+      if (obstacles[p])
+        {
+          const auto projection = obstacles[p]->project(x_e);
+          point.paired          = true;
+          point.normal          = projection.normal;
+          point.x_m_rigid       = projection.x_m;
+          // The increment since the step start of the obstacle's material
+          // point now at x^m.
+          point.rigid_increment =
+            projection.x_m - motion_at_start[p].apply(
+                               obstacles[p]->get_motion().inverse(projection.x_m));
+        }
+      else if (point.pinned_face >= 0 && !mortar)
+        {
+          // Pinned by a pairing 2-cycle: the face is kept while the
+          // projection onto it stays within the tolerance.
+          if (!pair_with_face(point.pinned_face))
+            point.pinned_face = -1;
+        }
+      else if (point.segment_master >= 0)
+        // Mortar: the master face of the point's piece (the search below
+        // only if the projection leaves that face).
+        pair_with_face(point.segment_master);
+      if (!obstacles[p] && !point.paired)
+        search_master(point, x_e, x_master, inside, tree);
+
+      // Pairing 2-cycle: back on the face of two pairings before.
+      bool pinned = false;
+      if (!within_newton && !mortar && !obstacles[p] && point.pinned_face < 0 &&
+          freeze_after > 0 && point.master_face >= 0 &&
+          pairings_in_step >= 3 && point.master_face == point.geo_face_2 &&
+          point.master_face != point.geo_face_1)
+        {
+          point.pinned_face = point.master_face;
+          pinned            = true;
+        }
+      if (!within_newton)
+        {
+          point.geo_face_2 = point.geo_face_1;
+          point.geo_face_1 = point.master_face;
+        }
+      // The contact normal points into the master (formulation.md 2), along
+      // the slave's outward normal.
+      if (!point.paired)
+        point.normal = point.slave_normal;
+      // Normal choice (nodal rule only, checked at input).
+      if (contact.normal == NormalChoice::slave)
+        point.normal = point.slave_normal;
+      else if (contact.normal == NormalChoice::average && point.paired)
+        {
+          point.normal += point.slave_normal;
+          point.normal /= point.normal.norm();
+        }
+      // The 3D crossing axis of T is kept until the next pairing, so that T
+      // stays smooth in n when n follows the iterate.
+      point.tangent_axis = tangent_axis<dim>(point.normal);
+      point.tangents     = tangent_basis<dim>(point.normal, point.tangent_axis);
+      return pinned;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::search_master(
+      ContactPoint                                           &point,
+      const Point<dim>                                       &x_e,
+      const std::vector<std::vector<Point<dim>>>             &x_master,
+      const std::vector<Point<dim>>                          &inside,
+      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    {
+      const unsigned int p = slave_faces[point.face].pair;
+      BoundingBox<dim>   query(std::make_pair(x_e, x_e));
+      query.extend(0.5 * face_size[p]);
+      const auto hits = faces_meeting(tree, query);
+      // Inside projections first (closest), then the smallest violation
+      // within the tolerance.
+      double best_inside = std::numeric_limits<double>::max();
+      double best_violation =
+        parameters.contact.projection_tolerance * (1 + 1e-12);
+      FaceProjection<dim> best;
+      int                 best_face      = -1;
+      bool                best_is_inside = false;
+      for (const unsigned int m : hits)
+        {
+          if (master_faces[m].pair != p)
+            continue;
+          const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
+          if (!proj.converged)
+            continue;
+          const double distance = x_e.distance(proj.x_m);
+          if (proj.inside)
+            {
+              if (distance < best_inside)
+                {
+                  best_inside    = distance;
+                  best           = proj;
+                  best_face      = m;
+                  best_is_inside = true;
+                }
+            }
+          else if (!best_is_inside && proj.violation < best_violation)
+            {
+              best_violation = proj.violation;
+              best           = proj;
+              best_face      = m;
+            }
+        }
+      if (best_face >= 0)
+        {
+          point.paired      = true;
+          point.master_face = best_face;
+          take_projection(point, best);
+        }
+      else
+        pair_deep(point, x_e, x_master, inside, tree);
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::set_multiplier_basis()
+    {
       // Dual multipliers only on slave faces whose points are all paired:
       // on a face that leaves the master partly, psi~ (negative lobes)
       // would weigh the gap of the paired part alone.

@@ -607,6 +607,30 @@ namespace Signorini
        * and rebuilds the contact points; a new point takes the last status
        * of the nearest old point of its face.
        */
+      /** Pairs one contact point at @p state with the master faces at
+       * @p x_master (rigid obstacle, pinned face, the mortar piece's face,
+       * else the search), records its pairing history and sets its normal
+       * and tangents; true if a pairing 2-cycle pinned it now. */
+      bool
+      pair_point(ContactPoint                                           &point,
+                 const TrilinosWrappers::MPI::Vector                    &state,
+                 const std::vector<std::vector<Point<dim>>>             &x_master,
+                 const std::vector<Point<dim>>                          &inside,
+                 const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree,
+                 const bool within_newton);
+      /** The search: the closest master face onto which @p point at @p x_e
+       * projects inside, else the smallest violation within the projection
+       * tolerance, else pair_deep(). */
+      void
+      search_master(ContactPoint                                           &point,
+                    const Point<dim>                                       &x_e,
+                    const std::vector<std::vector<Point<dim>>>             &x_master,
+                    const std::vector<Point<dim>>                          &inside,
+                    const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
+      /** psi_lambda of every point: the dual basis on the faces of
+       * node-status pairs whose points are all paired, else psi. */
+      void
+      set_multiplier_basis();
       /** Pairs an unpaired @p point deep inside the master body with the
        * nearest master face it lies behind (see the definition). */
       void
