@@ -238,7 +238,21 @@ namespace Signorini
       message = std::regex_replace(message,
                                    std::regex("Line <\\d+> of file <[^>]*>: "),
                                    "");
+      // Entries removed when their choice was decided (one default per
+      // choice, doc/theory.md): what the run does instead.
+      static const std::pair<const char *, const char *> removed[] = {
+        {"Penalty",
+         "the penalty law went; contact is always the augmented Lagrangian "
+         "law."},
+        {"Threshold coupling",
+         "K_fc is always kept (the exact Jacobian)."},
+        {"Release extrapolation", "release extrapolation is always on."}};
       std::string hint;
+      for (const auto &[name, instead] : removed)
+        if (message.find("No entry with name <" + std::string(name) + ">") !=
+            std::string::npos)
+          return "Error in " + where + ": the entry '" + name +
+                 "' was removed: " + instead + " Delete the line.";
       if (message.find("No entry with name") != std::string::npos ||
           message.find("has not been declared") != std::string::npos ||
           message.find("No such subsection") != std::string::npos ||
