@@ -27,11 +27,6 @@ namespace Signorini
 {
   namespace Contact
   {
-    using internal::add_entry;
-    using internal::faces_meeting;
-    using internal::offset_of;
-    using internal::pair_name;
-    using internal::writable_vector;
 
 
     template <int dim>

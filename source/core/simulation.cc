@@ -46,12 +46,7 @@
 namespace Signorini
 {
   using Postprocess::format;
-  using internal::exact_why;
-  using internal::floor_line;
   using internal::make_function;
-  using internal::newton_failure_reason;
-  using internal::norm_of;
-  using internal::stagnated_why;
 
 
   template <int dim>

@@ -44,12 +44,6 @@
 namespace Signorini
 {
   using Postprocess::format;
-  using internal::exact_why;
-  using internal::floor_line;
-  using internal::make_function;
-  using internal::newton_failure_reason;
-  using internal::norm_of;
-  using internal::stagnated_why;
 
 
   // Adaptive refinement: the Kelly indicator of the displacement, weighted

@@ -45,12 +45,7 @@
 namespace Signorini
 {
   using Postprocess::format;
-  using internal::exact_why;
-  using internal::floor_line;
   using internal::make_function;
-  using internal::newton_failure_reason;
-  using internal::norm_of;
-  using internal::stagnated_why;
 
 
   // Reaction of the supports on the body: F_int - F_ext summed over the
