@@ -98,10 +98,6 @@ namespace Signorini
           const bool frictionless_fixed_body = pair.friction == 0 &&
                                                pair.master_is_body() &&
                                                !newton_pairing_pair.back();
-          // Pairing at status changes: those pairs, with a point rule.
-          pairing_in_newton = (p == 0 || pairing_in_newton) &&
-                              contact.pairing_at_status_changes && !mortar &&
-                              frictionless_fixed_body;
           linear_statuses =
             (p == 0 || linear_statuses) &&
             (frictionless_fixed_body ||

@@ -34,8 +34,7 @@ namespace Signorini
     void
     ContactProblem<dim>::pair(const TrilinosWrappers::MPI::Vector &state,
                               const double                         time,
-                              const double                         t0,
-                              const bool within_newton)
+                              const double                         t0)
     {
       const auto &pairs = parameters.contact.pairs;
 
@@ -66,10 +65,10 @@ namespace Signorini
 
       unsigned int n_pinned = 0;
       n_deep                = 0;
-      pairings_in_step += within_newton ? 0 : 1;
+      ++pairings_in_step;
       for (auto &point : points)
         n_pinned +=
-          pair_point(point, state, x_master, inside, tree, within_newton);
+          pair_point(point, state, x_master, inside, tree);
       n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
       n_deep         = Utilities::MPI::sum(n_deep, comm);
       set_multiplier_basis();
@@ -83,8 +82,7 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector                    &state,
       const std::vector<std::vector<Point<dim>>>             &x_master,
       const std::vector<Point<dim>>                          &inside,
-      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree,
-      const bool                                              within_newton)
+      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
     {
       const auto        &contact      = parameters.contact;
       const unsigned int freeze_after = contact.freeze_after_cycles;
@@ -137,7 +135,7 @@ namespace Signorini
 
       // Pairing 2-cycle: back on the face of two pairings before.
       bool pinned = false;
-      if (!within_newton && !mortar && !obstacles[p] && point.pinned_face < 0 &&
+      if (!mortar && !obstacles[p] && point.pinned_face < 0 &&
           freeze_after > 0 && point.master_face >= 0 &&
           pairings_in_step >= 3 && point.master_face == point.geo_face_2 &&
           point.master_face != point.geo_face_1)
@@ -145,11 +143,8 @@ namespace Signorini
           point.pinned_face = point.master_face;
           pinned            = true;
         }
-      if (!within_newton)
-        {
-          point.geo_face_2 = point.geo_face_1;
-          point.geo_face_1 = point.master_face;
-        }
+      point.geo_face_2 = point.geo_face_1;
+      point.geo_face_1 = point.master_face;
       // The contact normal points into the master (formulation.md 2), along
       // the slave's outward normal.
       if (!point.paired)

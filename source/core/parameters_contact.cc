@@ -236,20 +236,6 @@ namespace Signorini
                       "a point back on its master face of two pairings "
                       "before stays on that face, for the rest of the load "
                       "step. 0: never freeze.");
-    prm.declare_entry(
-      "Pairing at status changes",
-      "false",
-      Patterns::Bool(),
-      "Frictionless pairs with a meshed master and a point rule (not "
-      "mortar): pair again at every Newton iterate whose statuses "
-      "changed, before its solve (that iterate needs a solve anyway), so "
-      "that the pairing follows the active-set search and the geometric "
-      "loop starts from a pairing at most one solve old (one solve less "
-      "per step, doc/robustness.md). The pairing accepted then depends on "
-      "the path of the search, within the 'Geometric tolerance' (p0 "
-      "differs by 2e-4 across the Normal coefficient), and at c_n = 1e6 "
-      "the statuses chatter. false: the pairing is renewed only between "
-      "Newton solves (formulation.md 7).");
     for (unsigned int k = 1; k <= counts.n_pairs; ++k)
       {
         prm.enter_subsection("Pair " + std::to_string(k));
@@ -290,7 +276,6 @@ namespace Signorini
     geometric_tolerance      = prm.get_double("Geometric tolerance");
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
     freeze_after_cycles      = prm.get_integer("Freeze after cycles");
-    pairing_at_status_changes = prm.get_bool("Pairing at status changes");
     pairs.resize(counts.n_pairs);
     for (unsigned int k = 0; k < counts.n_pairs; ++k)
       {

@@ -246,7 +246,9 @@ namespace Signorini
          "law."},
         {"Threshold coupling",
          "K_fc is always kept (the exact Jacobian)."},
-        {"Release extrapolation", "release extrapolation is always on."}};
+        {"Release extrapolation", "release extrapolation is always on."},
+        {"Pairing at status changes",
+         "the pairing is renewed between Newton solves only."}};
       std::string hint;
       for (const auto &[name, instead] : removed)
         if (message.find("No entry with name <" + std::string(name) + ">") !=

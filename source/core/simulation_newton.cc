@@ -65,7 +65,6 @@ namespace Signorini
   {
     history_time      = time;
     history_geometric = 0;
-    pairing_step_start_time = step_start_time;
     force_scale       = 0;
     make_constraints(time);
     for (auto &f : neumann_functions)
@@ -139,7 +138,7 @@ namespace Signorini
           TimerOutput::Scope t(timer, "sparsity");
           make_sparsity();
         }
-        state_at_pairing = state;
+        const TrilinosWrappers::MPI::Vector state_at_pairing = state;
         unsigned int its = 0;
         // A pairing that will change is not worth the last quadratic
         // iterations: hand over at 'Tolerance between pairings' (not in
@@ -258,13 +257,6 @@ namespace Signorini
             contact->update_coefficients(state);
             contact->start_newton_solve();
           }
-        // A status change at this iterate means another solve: with
-        // 'Pairing at status changes', pair at this iterate first and
-        // evaluate it again, so that the pairing follows the active-set
-        // search (the first evaluation is undone: the statuses of the
-        // last solve stay the reference of the status history).
-        const bool pair_here = contact->active() && iterations >= 1 &&
-                               contact->pairing_within_newton();
         // Line search (Newton/Line search steps): the full update of the
         // last solve is this iterate. Its evaluation is the trial of the
         // full step, so an accepted full step costs no extra assembly;
@@ -272,8 +264,7 @@ namespace Signorini
         // the fractions are tried (line_search()).
         const bool search = line_search_pending;
         line_search_pending = false;
-        const auto saved_points =
-          pair_here || search ? contact->save_points() : nullptr;
+        const auto saved_points = search ? contact->save_points() : nullptr;
         assemble(false);
         if (search)
           {
@@ -293,22 +284,6 @@ namespace Signorini
                 update_solution();
                 assemble(false);
               }
-          }
-        bool paired_here = false;
-        if (pair_here && contact_statistics.n_changed > 0)
-          {
-            {
-              TimerOutput::Scope t(timer, "pairing");
-              contact->restore_points(*saved_points);
-              contact->pair(state,
-                            history_time,
-                            pairing_step_start_time,
-                            true);
-              make_sparsity();
-            }
-            assemble(false);
-            state_at_pairing = state;
-            paired_here      = true;
           }
         const auto   block = block_residuals();
         const double residual = norm_of(block);
@@ -436,8 +411,7 @@ namespace Signorini
               pcout << " cycling " << st.n_cycling;
             if (st.n_frozen + st.n_newly_frozen > 0)
               pcout << " frozen " << st.n_frozen + st.n_newly_frozen;
-            pcout << (paired_here ? "  (paired again)" : "")
-                  << (converged ? "  converged" : "") << std::endl;
+            pcout << (converged ? "  converged" : "") << std::endl;
           }
         else if (verbose)
           pcout << "    Newton " << std::setw(2) << iterations

@@ -133,18 +133,6 @@ namespace Signorini
       }
 
       /**
-       * True if the pairing is renewed at the Newton iterates whose
-       * statuses changed ('Pairing at status changes'): every pair
-       * frictionless with a meshed master, no mortar segmentation (which
-       * rebuilds the points), no Newton on the pairing.
-       */
-      bool
-      pairing_within_newton() const
-      {
-        return pairing_in_newton;
-      }
-
-      /**
        * True if the residual is linear in the unknowns once the statuses
        * are fixed: every pair frictionless (no slip norm), on a meshed
        * master paired at fixed points and normals, or on a rigid plane.
@@ -211,15 +199,12 @@ namespace Signorini
        * closest-point projection on the master faces proposed by a
        * bounding-box tree, or on the rigid obstacle at time @p time.
        * @p state is the ghosted system vector. @p step_start_time is the
-       * start of the load step (rigid obstacle increments). A pairing
-       * @p within_newton (at a status-changing Newton iterate) is not part
-       * of the pairing history of the geometric loop (2-cycle pins).
+       * start of the load step (rigid obstacle increments).
        */
       void
       pair(const TrilinosWrappers::MPI::Vector &state,
            const double                         time,
-           const double                         step_start_time,
-           const bool                           within_newton = false);
+           const double                         step_start_time);
 
       /**
        * Friction augmentation rho_t = c_t rho_n / (mu p_ref) per pair, with
@@ -616,8 +601,7 @@ namespace Signorini
                  const TrilinosWrappers::MPI::Vector                    &state,
                  const std::vector<std::vector<Point<dim>>>             &x_master,
                  const std::vector<Point<dim>>                          &inside,
-                 const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree,
-                 const bool within_newton);
+                 const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
       /** The search: the closest master face onto which @p point at @p x_e
        * projects inside, else the smallest violation within the projection
        * tolerance, else pair_deep(). */
@@ -819,7 +803,6 @@ namespace Signorini
       // derivatives of the projection in the Jacobian.
       std::vector<bool> newton_pairing_pair;
       bool              pairing_exact = false; // see pairing_is_exact()
-      bool pairing_in_newton = false; // see pairing_within_newton()
       bool linear_statuses   = false; // see linear_at_fixed_statuses()
       bool                any_node_status = false;
       // Normal status of the multiplier nodes of node-status pairs (key:

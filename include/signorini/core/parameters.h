@@ -332,7 +332,6 @@ namespace Signorini
     double                             geometric_tolerance;
     unsigned int                       max_geometric_iterations;
     unsigned int                       freeze_after_cycles; // 0: never
-    bool pairing_at_status_changes; // pair at status-changing iterates
 
     static void declare_parameters(ParameterHandler &prm, const Counts &counts);
     void        parse_parameters(ParameterHandler &prm, const Counts &counts);

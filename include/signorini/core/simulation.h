@@ -334,10 +334,6 @@ namespace Signorini
     unsigned int early_releases = 0;
     unsigned int             history_step = 0, history_geometric = 0;
     double                   history_time = 0;
-    // Pairing within the Newton solve (status-changing iterates): the step
-    // start time and the state at the last pairing.
-    double                        pairing_step_start_time = 0;
-    TrilinosWrappers::MPI::Vector state_at_pairing;
   };
 
   /** Reads @p filename, dispatches on Dimension and runs; used by main().
