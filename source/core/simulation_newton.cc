@@ -46,11 +46,6 @@
 namespace Signorini
 {
   using Postprocess::format;
-  using internal::exact_why;
-  using internal::floor_line;
-  using internal::newton_failure_reason;
-  using internal::norm_of;
-  using internal::stagnated_why;
 
 
   // One load step (formulation.md 7): Dirichlet values of the new time on
@@ -180,11 +175,11 @@ namespace Signorini
             // statuses, direct solve) and left a residual above it: a
             // further solve would only stir the round-off.
             const bool at_floor =
-              handover > 0 && exact_at_end &&
-              residual_at_end > parameters.newton.relative_tolerance;
+              handover > 0 && last_newton.exact_at_end &&
+              last_newton.residual_at_end >
+                parameters.newton.relative_tolerance;
             if (at_floor)
-              pcout << floor_line(residual_at_end, floor_at_end, exact_why)
-                    << std::endl;
+              pcout << last_newton.exact_floor_line() << std::endl;
             if (handover > 0 && !at_floor)
               {
                 unsigned int more = 0;
@@ -221,319 +216,41 @@ namespace Signorini
   }
 
 
-  // Generalised Newton (formulation.md 7.2): statuses are recomputed at
-  // every iterate; converged when every block residual is small AND no
-  // status changed since the previous iterate.
+  // One Newton solve of the current pairing (Solver::NewtonSolver, with
+  // this Simulation as its problem).
   template <int dim>
   bool
   Simulation<dim>::newton(unsigned int &iterations, const double tolerance)
   {
-    const bool verbose = parameters.output.verbosity == Verbosity::verbose;
-    const bool show_contact =
-      contact->active() && parameters.output.verbosity != Verbosity::quiet;
-    double residual_before = 0;
-    bool   settled_before = false;
-    // The iterate is the result of an exact Newton step: a direct solve,
-    // the full update, with the statuses of its evaluation (no early
-    // release, no frozen point released without a solve).
-    bool step_exact = false;
-    // Line search: the last solve's base, update and residual, tried at
-    // the next evaluation.
-    bool                          line_search_pending = false;
-    TrilinosWrappers::MPI::Vector search_base, search_update;
-    double                        search_residual = 0;
-    exact_at_end    = false;
-    std::vector<double> residuals; // relative, per iterate (failure reason)
-    for (iterations = 0; iterations <= parameters.newton.max_iterations;
-         ++iterations)
+    Solver::NewtonSolver::Parameters p;
+    p.max_iterations     = parameters.newton.max_iterations;
+    p.relative_tolerance = parameters.newton.relative_tolerance;
+    p.absolute_tolerance = parameters.newton.absolute_tolerance;
+    // The line search damps the status changes of contact; a linear bulk
+    // alone has none.
+    p.line_search_steps =
+      contact->active() ? parameters.newton.line_search_steps : 0;
+    p.quiet = parameters.output.verbosity == Verbosity::quiet;
+    const Solver::NewtonSolver solver(p, pcout, timer);
+    last_newton = solver.solve(*this, force_scale, tolerance);
+    iterations  = last_newton.iterations;
+    line_searches += last_newton.line_searches;
+    if (!last_newton.converged)
       {
-        // Residual first; the matrix only if a solve follows, so the
-        // converged check does not pay for a matrix assembly.
-        // rho_t follows the pressure level once per Newton solve: changing
-        // it between iterates would change the equations being solved and
-        // spoil the quadratic convergence.
-        if (contact->active() && iterations == 0)
-          {
-            contact->update_coefficients(state);
-            contact->start_newton_solve();
-          }
-        // Line search (Newton/Line search steps): the full update of the
-        // last solve is this iterate. Its evaluation is the trial of the
-        // full step, so an accepted full step costs no extra assembly;
-        // when it made the residual grow, the evaluation is undone and
-        // the fractions are tried (line_search()).
-        const bool search = line_search_pending;
-        line_search_pending = false;
-        const auto saved_points = search ? contact->save_points() : nullptr;
-        assemble(false);
-        if (search)
-          {
-            const double r_full = norm_of(block_residuals());
-            if (r_full > (1 - 1e-4) * search_residual)
-              {
-                contact->restore_points(*saved_points);
-                const double alpha = line_search(search_base,
-                                                 search_update,
-                                                 search_residual,
-                                                 r_full);
-                if (alpha < 1)
-                  step_exact = false;
-                TrilinosWrappers::MPI::Vector owned = search_base;
-                owned.add(alpha, search_update);
-                state = owned;
-                update_solution();
-                assemble(false);
-              }
-          }
-        const auto   block = block_residuals();
-        const double residual = norm_of(block);
-        // The force level of the load step so far: the largest internal
-        // and external force of its iterates. Not the residual: its
-        // multiplier rows (scaled by rho_n) hold rho_n times the initial
-        // gaps at a 'closed' start, and its displacement rows rho_n times
-        // the gap of a point that just closed, so a level taken from it
-        // (and every relative tolerance) depended on the Normal
-        // coefficient (c_n = 1e6: a level 1e6 times the load). The
-        // maximum over the step: in a later geometric iteration of a
-        // stress-free step (open contact, rigid motion) the forces are
-        // round-off and must not become the scale.
-        force_scale = std::max({force_scale,
-                                internal_force.l2_norm(),
-                                external_force.l2_norm()});
-        const double relative_tolerance =
-          tolerance > 0 ? std::max(tolerance,
-                                   parameters.newton.relative_tolerance) :
-                          parameters.newton.relative_tolerance;
-        const auto small = [&](const double r) {
-          return r <= parameters.newton.absolute_tolerance ||
-                 r <= relative_tolerance * force_scale;
-        };
-        // Round-off floor (doc/robustness.md, "Round-off floor computed"):
-        // the residual cannot go below the round-off of its terms: eps
-        // || |K| |x| || for the internal force and the linear contact
-        // terms (large where the terms cancel: a rigid motion, a stiffness
-        // contrast; Solver::absolute_product_norm() with the last Jacobian
-        // and the state it was assembled at: the scale changes little from
-        // one iterate to the next, and at the first iterate of a pairing
-        // the matrix is not assembled yet), and eps rho_n |x| for the
-        // gaps, which are differences of positions (large for large
-        // coefficients c_n; ContactProblem::roundoff_scale()). An iterate
-        // at or below 10 eps times that scale is accepted once the
-        // statuses have settled
-        // and Newton can do no more: its last step no longer halved the
-        // residual (stagnation), or it was an exact step of equations
-        // linear at fixed statuses (a direct solve, the full update;
-        // contact->linear_at_fixed_statuses(), and every material says
-        // is_linear()),
-        // after which what is left is round-off. A Newton that still
-        // contracts, or one that stalls above round-off (a Jacobian that is
-        // not the derivative of the residual), is never accepted here.
-        constexpr double floor_factor =
-          10 * std::numeric_limits<double>::epsilon();
-        const double bulk_floor = floor_factor * matrix_roundoff;
-        const double contact_floor =
-          contact->active() ? floor_factor * contact->roundoff_scale() : 0.;
-        const double roundoff_floor = std::hypot(bulk_floor, contact_floor);
-        const bool statuses_settled =
-          !contact->active() || contact_statistics.n_changed == 0;
-        const bool stagnated = iterations >= 1 && statuses_settled &&
-                               settled_before &&
-                               residual > 0.5 * residual_before;
-        settled_before  = statuses_settled;
-        residual_before = residual;
-        const bool exact_step =
-          step_exact && statuses_settled && materials_linear &&
-          (!contact->active() || contact->linear_at_fixed_statuses());
-        const bool at_floor =
-          residual <= roundoff_floor && (stagnated || exact_step);
-        const bool at_exact_floor = at_floor && exact_step;
-        // A force level near zero (a body moving rigidly without touching
-        // anything): the displacement rows at the round-off of the
-        // internal force are as small as they get, at any iterate (the
-        // rigid motion of a predictor), and relative to a force level that
-        // is itself round-off they stay near 1e-2.
-        const bool below_tolerance =
-          (small(block[0]) || block[0] <= bulk_floor) && small(block[1]) &&
-          small(block[2]);
-        const bool residual_small = below_tolerance || at_floor;
-        if (below_tolerance && !small(block[0]) &&
-            parameters.output.verbosity != Verbosity::quiet)
-          pcout << "    residual at the round-off of the displacement (the "
-                   "force level is near zero: a rigid motion): accepted"
-                << std::endl;
-        if (at_floor && !below_tolerance)
-          pcout << floor_line(residual / force_scale,
-                              roundoff_floor / force_scale,
-                              exact_step ? exact_why : stagnated_why)
-                << std::endl;
-        // A frozen point (anti-cycling) that the plain law contradicts at
-        // the converged iterate is released; Newton goes on from there.
-        const bool release = residual_small && statuses_settled &&
-                             contact->active() &&
-                             contact_statistics.n_violated > 0;
-        const bool converged = residual_small && statuses_settled && !release;
-        cycle_detections += contact->active() ? contact_statistics.n_cycling : 0;
-        points_frozen += contact->active() ? contact_statistics.n_newly_frozen : 0;
-        const auto relative = [&](const double r) {
-          return force_scale > 0 ? r / force_scale : 0.;
-        };
-        // Printed: above 1e6 the force level is the round-off of a
-        // stress-free state (a body moving freely before contact), and the
-        // digits of the ratio are round-off too.
-        const auto shown = [&](const double r) {
-          std::ostringstream text;
-          if (!std::isfinite(r) || !std::isfinite(force_scale))
-            text << (std::isnan(r) || std::isnan(force_scale) ? "NaN" :
-                                                                 "inf");
-          else if (relative(r) > 1e6)
-            text << ">1.0e+06";
-          else
-            text << std::scientific << std::setprecision(2) << relative(r);
-          return text.str();
-        };
-        if (show_contact)
-          {
-            const auto &st = contact_statistics;
-            pcout << "    Newton " << std::setw(2) << iterations
-                  << ": |R_u| " << shown(block[0]) << " |R_lambda| "
-                  << shown(block[1]);
-            if (contact->n_friction_dofs() > 0)
-              pcout << " |R_Lambda| " << shown(block[2]);
-            pcout << std::defaultfloat << "  contact " << st.n_contact;
-            if (contact->n_friction_dofs() > 0)
-              pcout << " (stick " << st.n_stick << ", slip " << st.n_slip
-                    << ")";
-            pcout << " free " << st.n_points - st.n_contact << " changed "
-                  << st.n_changed;
-            if (st.n_reversed > 0)
-              pcout << " (slip reversed " << st.n_reversed << ")";
-            if (st.n_cycling > 0)
-              pcout << " cycling " << st.n_cycling;
-            if (st.n_frozen + st.n_newly_frozen > 0)
-              pcout << " frozen " << st.n_frozen + st.n_newly_frozen;
-            pcout << (converged ? "  converged" : "") << std::endl;
-          }
-        else if (verbose)
-          pcout << "    Newton " << std::setw(2) << iterations
-                << ": |R|/|F| = " << std::scientific << std::setprecision(2)
-                << relative(residual) << std::defaultfloat
-                << (converged ? "  converged" : "") << std::endl;
-        {
-          const auto &       st = contact_statistics;
-          std::ostringstream row;
-          row << history_step << "," << format(history_time) << ","
-              << history_geometric << "," << iterations << ","
-              << format(relative(block[0]), 3) << ","
-              << format(relative(block[1]), 3) << ","
-              << format(relative(block[2]), 3);
-          if (contact->active())
-            row << "," << st.n_contact << "," << st.n_stick << ","
-                << st.n_slip << "," << st.n_changed << "," << st.n_reversed
-                << "," << st.n_cycling << "," << st.n_frozen + st.n_newly_frozen;
-          else
-            row << ",0,0,0,0,0,0,0";
-          row << "," << (converged ? 1 : 0);
-          newton_rows.push_back(row.str());
-        }
-        if (!std::isfinite(residual))
-          {
-            newton_failure_kind = NewtonFailure::non_finite;
-            newton_failure =
-              "the residual is not finite (" + format(residual, 2) +
-              ") at Newton iterate " + std::to_string(iterations) +
-              non_finite_loads(history_time);
-            return false;
-          }
-        residuals.push_back(relative(residual));
-        if (parameters.newton.check_jacobian && contact->active())
-          check_jacobian();
-        if (converged)
-          {
-            exact_at_end      = at_exact_floor;
-            residual_at_end   = relative(residual);
-            floor_at_end      = relative(roundoff_floor);
-            return true;
-          }
-        if (iterations == parameters.newton.max_iterations)
-          break;
-        step_exact = false;
-        if (release)
-          {
-            unsigned int       refrozen = 0;
-            const unsigned int n        = contact->release_frozen(refrozen);
-            points_released += n;
-            points_frozen += refrozen;
-            if (show_contact)
-              {
-                pcout << "    frozen point(s) that the contact law "
-                         "contradicts: "
-                      << n << " released";
-                if (refrozen > 0)
-                  pcout << ", " << refrozen
-                        << " frozen again in the friction status the law "
-                           "asks for";
-                pcout << std::endl;
-              }
-            continue; // re-evaluate the same iterate
-          }
-
-        // Release extrapolation (a shrinking contact zone): the points
-        // released early stay open for this solve only.
-        unsigned int n_early = 0;
-        if (contact->active() && iterations >= 1)
-          if (const unsigned int n = contact->extrapolate_releases(); n > 0)
-            {
-              n_early = n;
-              early_releases += n;
-              if (show_contact)
-                pcout << "    release extrapolation: " << n
-                      << " point(s) opened for this solve" << std::endl;
-            }
-        assemble(true);
-        if (contact->active())
-          contact->clear_releases();
-        matrix_roundoff =
-          Solver::absolute_product_norm(system_matrix, state, mpi_communicator);
-        hold_free_motions(iterations);
-        TimerOutput::Scope t(timer, "linear solve");
-        TrilinosWrappers::MPI::Vector update(owned_system, mpi_communicator);
-        const unsigned int krylov =
-          linear_solver->solve(system_matrix, update, newton_rhs);
-        krylov_iterations += krylov;
-        krylov_max = std::max(krylov_max, krylov);
-        constraints_update.distribute(update);
-        TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
-        owned = state;
-        if (parameters.newton.line_search_steps > 0 && contact->active())
-          {
-            line_search_pending = true;
-            search_base         = owned;
-            search_update       = update;
-            search_residual     = residual;
-          }
-        owned.add(1., update);
-        state = owned;
-        update_solution();
-        step_exact = krylov == 0 && n_early == 0;
+        newton_failure_kind = last_newton.failure;
+        newton_failure      = last_newton.why;
       }
-    std::tie(newton_failure_kind, newton_failure) =
-      newton_failure_reason(residuals,
-                            contact->active() ? contact_statistics.n_changed :
-                                                0,
-                            free_motions,
-                            parameters.newton.max_iterations);
-    return false;
+    return last_newton.converged;
   }
 
 
   template <int dim>
-  void
+  std::string
   Simulation<dim>::hold_free_motions(const unsigned int iteration)
   {
-    free_motions.clear();
     const auto free = rigid_modes.find(system_matrix, dof_handler.n_dofs());
     if (free.empty())
-      return;
+      return "";
     std::string list;
     for (const auto &m : free)
       list += (list.empty() ? "" : "; ") + rigid_modes.describe(m);
@@ -556,11 +273,11 @@ namespace Signorini
         "displacement, or let it start in contact ('Contact/Initial status "
         "= closed').");
     rigid_modes.hold(system_matrix, dof_handler.n_dofs(), free);
-    free_motions = list;
     if (parameters.output.verbosity != Verbosity::quiet)
       pcout << "    held for this solve (friction without threshold or "
                "slipping everywhere): "
             << list << std::endl;
+    return list;
   }
 
 
@@ -663,57 +380,6 @@ namespace Signorini
     for (auto &b : block)
       b = std::sqrt(Utilities::MPI::sum(b, mpi_communicator));
     return block;
-  }
-
-
-  // Backtracking on the residual norm (Newton/Line search steps): the
-  // full update made the residual grow from @p residual_now to
-  // @p residual_full; try 1/2, 1/4, ... of it and return the first fraction
-  // that decreases the residual, else the one with the smallest residual
-  // (1 if no fraction beats the full update). Each trial is a residual
-  // evaluation with its own statuses, outside the status history; the
-  // contact points are left as they were on entry.
-  template <int dim>
-  double
-  Simulation<dim>::line_search(const TrilinosWrappers::MPI::Vector &base,
-                               const TrilinosWrappers::MPI::Vector &update,
-                               const double residual_now,
-                               const double residual_full)
-  {
-    TimerOutput::Scope t(timer, "line search");
-    const auto   saved            = contact->save_points();
-    const auto   saved_statistics = contact_statistics;
-    double       best = residual_full, best_alpha = 1, alpha = 1;
-    for (unsigned int k = 1; k <= parameters.newton.line_search_steps; ++k)
-      {
-        alpha *= 0.5;
-        TrilinosWrappers::MPI::Vector trial = base;
-        trial.add(alpha, update);
-        state = trial;
-        update_solution();
-        assemble(false, true);
-        const double r = norm_of(block_residuals());
-        if (r < best)
-          {
-            best       = r;
-            best_alpha = alpha;
-          }
-        if (r <= (1 - 1e-4 * alpha) * residual_now)
-          break;
-      }
-    contact->restore_points(*saved);
-    contact_statistics = saved_statistics;
-    if (best_alpha < 1)
-      {
-        ++line_searches;
-        if (parameters.output.verbosity != Verbosity::quiet)
-          pcout << "    line search: " << best_alpha
-                << " of the update (residual " << std::scientific
-                << std::setprecision(2) << residual_full / residual_now
-                << " -> " << best / residual_now << " of the current)"
-                << std::defaultfloat << std::endl;
-      }
-    return best_alpha;
   }
 
 

@@ -19,6 +19,8 @@
 #include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/output_files.h>
 #include <signorini/solver/linear_solver.h>
+#include <signorini/solver/newton_solver.h>
+#include <signorini/solver/nonlinear_problem.h>
 #include <signorini/solver/rigid_modes.h>
 
 #include <array>
@@ -38,15 +40,7 @@ namespace Signorini
 {
   using namespace dealii;
 
-  /** Why a Newton solve (or a load step's geometric loop) failed. */
-  enum class NewtonFailure
-  {
-    non_finite,      // NaN or inf in the residual
-    statuses,        // contact statuses still changing
-    stagnation,      // settled statuses, residual no longer decreasing
-    iteration_limit, // still converging when the iterations ran out
-    geometric        // the pairing loop did not settle
-  };
+  using Solver::NewtonFailure;
 
   /** A run that must stop (not a user input problem): says where and why. */
   class RunError : public std::runtime_error
@@ -60,12 +54,14 @@ namespace Signorini
    * assembler, the contact problem and the linear solver. Its members are
    * defined by concern in source/core/: simulation.cc (mesh, DoFs,
    * constraints, the run over the load steps), simulation_newton.cc (load
-   * step, Newton loop, line search, Jacobian check),
+   * step and its geometric loop, Jacobian check), simulation_problem.cc
+   * (the problem the Newton solver iterates on: residual, log rows,
+   * linearised solve),
    * simulation_adaptivity.cc (refinement between steps) and
    * simulation_output.cc (reactions, reference errors, files, summary).
    */
   template <int dim>
-  class Simulation
+  class Simulation : private Solver::NonlinearProblem
   {
   public:
     /** @p prm: the parameters read into @p parameters (the models of
@@ -73,7 +69,7 @@ namespace Signorini
     Simulation(const Parameters &parameters,
                ParameterHandler &prm,
                const MPI_Comm    mpi_communicator);
-    ~Simulation();
+    ~Simulation() override;
 
     void
     run();
@@ -144,18 +140,42 @@ namespace Signorini
      * exceed 'Geometry/Maximum number of cells'. */
     void
     check_adapted_size() const;
-    /** Newton loop on the current pairing; @p tolerance > 0 replaces
-     * 'Relative tolerance' once the statuses have settled (a solve that
-     * hands over to a new pairing). */
+    /** Newton solve (Solver::NewtonSolver) on the current pairing;
+     * @p tolerance > 0 replaces 'Relative tolerance' once the statuses
+     * have settled (a solve that hands over to a new pairing). */
     bool
     newton(unsigned int &n_iterations, const double tolerance = 0.);
-    double
-    line_search(const TrilinosWrappers::MPI::Vector &base,
-                const TrilinosWrappers::MPI::Vector &update,
-                const double                         residual_now,
-                const double                         residual_full);
     void
     check_jacobian();
+
+    // Solver::NonlinearProblem (simulation_problem.cc).
+    struct IterateSnapshot;
+    void
+    start_solve() override;
+    Solver::Evaluation
+    evaluate(const bool trial) override;
+    void
+    record_iterate(const unsigned int        iteration,
+                   const Solver::Evaluation &evaluation,
+                   const double              force_level,
+                   const bool                converged) override;
+    void
+    check_iterate() override;
+    std::string
+    non_finite_cause() const override;
+    void
+    release_contradicted() override;
+    Solver::LinearisedStep
+    solve_linearised(const unsigned int iteration) override;
+    TrilinosWrappers::MPI::Vector
+    iterate() const override;
+    void
+    set_iterate(const TrilinosWrappers::MPI::Vector &owned) override;
+    std::unique_ptr<Solver::NonlinearProblem::Snapshot>
+    save() const override;
+    void
+    restore(const Solver::NonlinearProblem::Snapshot &snapshot) override;
+
     /** Reactions, reference checks, statistics row, VTU and contact CSV of
      * load step @p step at time @p time (the statistics row last). */
     void
@@ -170,8 +190,9 @@ namespace Signorini
     /** Before a solve: the rigid motions the assembled Jacobian does not
      * hold. With closed frictional points (friction that has no threshold
      * yet, or slips everywhere) they are held by springs for this solve;
-     * otherwise the system is singular and the run stops (RunError). */
-    void
+     * otherwise the system is singular and the run stops (RunError).
+     * Returns the motions held ("" if none). */
+    std::string
     hold_free_motions(const unsigned int iteration);
     /** The load expressions that are not finite at time @p t at a mesh
      * vertex (for the message of a non-finite residual). */
@@ -284,21 +305,18 @@ namespace Signorini
     std::vector<std::string>              last_checks; // all checks, last step
     double                        jacobian_error_max  = 0; // Check Jacobian
 
+    // Force level of the load step: the largest internal or external
+    // force norm of its iterates (Solver::NewtonSolver::solve()).
     double                           force_scale = 0;
-    // The last newton() call converged at the round-off floor of an exact
-    // step (see newton()).
-    bool   exact_at_end    = false;
-    double residual_at_end = 0; // its residual over the force level
-    double floor_at_end    = 0; // and its round-off floor
-    // Rigid motions of the bodies; those the Jacobian of the last solve did
-    // not hold (held by springs for that solve, see hold_free_motions()).
+    // The result of the last newton() call.
+    Solver::NewtonSolver::Result last_newton;
+    // Rigid motions of the bodies (see hold_free_motions()).
     Solver::RigidModes<dim> rigid_modes;
-    std::string             free_motions;
     // Why the last newton() or solve_load_step() call failed (for the
     // message when the step cuts are used up).
     double        last_written_time = 0; // of the last step written
     // || |K| |x| || of the last Jacobian K at the state x it was assembled
-    // at: the round-off scale of the internal force (newton()).
+    // at: the round-off scale of the internal force (evaluate()).
     double        matrix_roundoff = 0;
     std::string   newton_failure;
     NewtonFailure newton_failure_kind = NewtonFailure::iteration_limit;
