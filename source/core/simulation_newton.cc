@@ -58,81 +58,17 @@ namespace Signorini
                                    unsigned int &iterations,
                                    const bool    resume)
   {
-    history_time      = time;
-    history_geometric = 0;
-    force_scale       = 0;
-    make_constraints(time);
-    for (auto &f : neumann_functions)
-      f->set_time(time);
-    body_force->set_time(time);
-    // resume (after mesh adaptation): state_step_start is kept and the
-    // first iterate is the state as it is, with this step's Dirichlet
-    // values.
-    if (!resume)
-      state_step_start = state;
-    {
-      // Extrapolated predictor: the last converged increment, scaled to
-      // this step's size; Dirichlet values then override their entries.
-      // One insert per entry: an add after an insert would leave the ranks
-      // with and without DoFs in different compress modes (a deadlock).
-      const double factor =
-        !resume && parameters.load_stepping.extrapolate && last_step_size > 0 ?
-          (time - step_start_time) / last_step_size :
-          0.;
-      TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
-      for (const auto i : owned_system)
-        owned[i] = factor != 0 ? state[i] + factor * last_increment[i] :
-                                 static_cast<double>(state[i]);
-      owned.compress(VectorOperation::insert);
-      constraints_values.distribute(owned);
-      state = owned;
-    }
-    update_solution();
+    start_load_step(time, step_start_time, resume);
     iterations = 0;
     if (!contact->active())
       return newton(iterations);
 
-    const auto &c       = parameters.contact;
-    const bool  verbose = parameters.output.verbosity != Verbosity::quiet;
+    const auto &c = parameters.contact;
     contact->start_geometric_loop();
     for (unsigned int g = 1; g <= c.max_geometric_iterations; ++g)
       {
         history_geometric = g;
-        {
-          TimerOutput::Scope t(timer, "pairing");
-          contact->pair(state, time, step_start_time);
-          if (const unsigned int n = contact->deep_points(); n > 0)
-            pcout << "    pairing: " << n
-                  << " slave point(s) deep inside the master body, paired "
-                     "from the penetrated side"
-                  << std::endl;
-          if (const unsigned int n = contact->newly_pinned(); n > 0)
-            {
-              cycle_detections += n;
-              points_frozen += n;
-              pcout << "    geometric loop: " << n
-                    << " point(s) back on their master face of two pairings"
-                       " before: pinned to it for the rest of the step"
-                    << std::endl;
-            }
-          if (first_pairing)
-            {
-              TrilinosWrappers::MPI::Vector owned(owned_system,
-                                                  mpi_communicator);
-              owned = state;
-              contact->set_initial_multipliers(state, owned);
-              // Hanging and excluded multipliers follow their constraint
-              // lines from the start: Newton updates are distributed with
-              // homogeneous lines, so a start off the lines would stay off.
-              constraints_values.distribute(owned);
-              state         = owned;
-              first_pairing = false;
-            }
-        }
-        {
-          TimerOutput::Scope t(timer, "sparsity");
-          make_sparsity();
-        }
+        pair_for_step(time, step_start_time);
         const TrilinosWrappers::MPI::Vector state_at_pairing = state;
         unsigned int its = 0;
         // A pairing that will change is not worth the last quadratic
@@ -150,52 +86,14 @@ namespace Signorini
         // Rigid obstacles projected at every iterate: nothing to re-pair.
         if (contact->pairing_is_exact())
           return true;
-        // Largest displacement change since the pairing against the step's
-        // increment (code_aster's criterion, formulation.md 7.3).
-        double change = 0, increment = 0;
-        for (const auto i : locally_owned)
-          {
-            change =
-              std::max(change, std::abs(state[i] - state_at_pairing[i]));
-            increment = std::max(increment,
-                                 std::abs(state[i] - state_step_start[i]));
-          }
-        change    = Utilities::MPI::max(change, mpi_communicator);
-        increment = Utilities::MPI::max(increment, mpi_communicator);
-        const double ratio = increment > 0 ? change / increment : 0.;
-        if (verbose)
+        const double ratio = pairing_change(state_at_pairing);
+        if (parameters.output.verbosity != Verbosity::quiet)
           pcout << "    geometric iteration " << g
                 << ": change/increment = " << std::scientific
                 << std::setprecision(2) << ratio << std::defaultfloat
                 << std::endl;
         if (ratio <= c.geometric_tolerance)
-          {
-            // The pairing stays: finish the solve at 'Relative tolerance',
-            // unless its last step was exact (linear equations at settled
-            // statuses, direct solve) and left a residual above it: a
-            // further solve would only stir the round-off.
-            const bool at_floor =
-              handover > 0 && last_newton.exact_at_end &&
-              last_newton.residual_at_end >
-                parameters.newton.relative_tolerance;
-            if (at_floor)
-              pcout << last_newton.exact_floor_line() << std::endl;
-            if (handover > 0 && !at_floor)
-              {
-                unsigned int more = 0;
-                const bool   done = newton(more);
-                iterations += more;
-                if (!done)
-                  return false;
-              }
-            if (contact_statistics.n_geometric_frozen > 0)
-              pcout << "    geometric loop converged with "
-                    << contact_statistics.n_geometric_frozen
-                    << " point(s) frozen by the geometric loop, "
-                    << contact_statistics.n_geometric_violated
-                    << " of them against the plain contact law" << std::endl;
-            return true;
-          }
+          return finish_geometric_loop(handover, iterations);
         // Anti-cycling across pairings: points back at their status of two
         // pairings before keep one status for the rest of the step.
         if (const unsigned int n = contact->end_geometric_iteration(g); n > 0)
@@ -213,6 +111,138 @@ namespace Signorini
                      std::to_string(c.max_geometric_iterations) +
                      " pairings ('Contact/Maximum geometric iterations')";
     return false;
+  }
+
+
+  // The loads and Dirichlet values at @p time, and the first iterate: the
+  // extrapolated predictor from the step start, or (resume, after mesh
+  // adaptation) the state as it is, with state_step_start kept.
+  template <int dim>
+  void
+  Simulation<dim>::start_load_step(const double time,
+                                   const double step_start_time,
+                                   const bool   resume)
+  {
+    history_time      = time;
+    history_geometric = 0;
+    force_scale       = 0;
+    make_constraints(time);
+    for (auto &f : neumann_functions)
+      f->set_time(time);
+    body_force->set_time(time);
+    if (!resume)
+      state_step_start = state;
+    // Extrapolated predictor: the last converged increment, scaled to this
+    // step's size; Dirichlet values then override their entries. One
+    // insert per entry: an add after an insert would leave the ranks with
+    // and without DoFs in different compress modes (a deadlock).
+    const double factor =
+      !resume && parameters.load_stepping.extrapolate && last_step_size > 0 ?
+        (time - step_start_time) / last_step_size :
+        0.;
+    TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
+    for (const auto i : owned_system)
+      owned[i] = factor != 0 ? state[i] + factor * last_increment[i] :
+                               static_cast<double>(state[i]);
+    owned.compress(VectorOperation::insert);
+    constraints_values.distribute(owned);
+    state = owned;
+    update_solution();
+  }
+
+
+  // A pairing of the geometric loop (obstacles at @p time), its messages,
+  // the initial multipliers at the first pairing of the run, the sparsity
+  // pattern of its couplings.
+  template <int dim>
+  void
+  Simulation<dim>::pair_for_step(const double time,
+                                 const double step_start_time)
+  {
+    {
+      TimerOutput::Scope t(timer, "pairing");
+      contact->pair(state, time, step_start_time);
+      if (const unsigned int n = contact->deep_points(); n > 0)
+        pcout << "    pairing: " << n
+              << " slave point(s) deep inside the master body, paired "
+                 "from the penetrated side"
+              << std::endl;
+      if (const unsigned int n = contact->newly_pinned(); n > 0)
+        {
+          cycle_detections += n;
+          points_frozen += n;
+          pcout << "    geometric loop: " << n
+                << " point(s) back on their master face of two pairings"
+                   " before: pinned to it for the rest of the step"
+                << std::endl;
+        }
+      if (first_pairing)
+        {
+          TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
+          owned = state;
+          contact->set_initial_multipliers(state, owned);
+          // Hanging and excluded multipliers follow their constraint lines
+          // from the start: Newton updates are distributed with
+          // homogeneous lines, so a start off the lines would stay off.
+          constraints_values.distribute(owned);
+          state         = owned;
+          first_pairing = false;
+        }
+    }
+    TimerOutput::Scope t(timer, "sparsity");
+    make_sparsity();
+  }
+
+
+  // Largest displacement change since the pairing against the step's
+  // increment (code_aster's criterion, formulation.md 7.3).
+  template <int dim>
+  double
+  Simulation<dim>::pairing_change(
+    const TrilinosWrappers::MPI::Vector &state_at_pairing) const
+  {
+    double change = 0, increment = 0;
+    for (const auto i : locally_owned)
+      {
+        change = std::max(change, std::abs(state[i] - state_at_pairing[i]));
+        increment =
+          std::max(increment, std::abs(state[i] - state_step_start[i]));
+      }
+    change    = Utilities::MPI::max(change, mpi_communicator);
+    increment = Utilities::MPI::max(increment, mpi_communicator);
+    return increment > 0 ? change / increment : 0.;
+  }
+
+
+  // The pairing stays: finish the solve at 'Relative tolerance' (it was
+  // handed over at @p handover > 0), unless its last step was exact
+  // (linear equations at settled statuses, direct solve) and left a
+  // residual above it: a further solve would only stir the round-off.
+  template <int dim>
+  bool
+  Simulation<dim>::finish_geometric_loop(const double  handover,
+                                         unsigned int &iterations)
+  {
+    const bool at_floor =
+      handover > 0 && last_newton.exact_at_end &&
+      last_newton.residual_at_end > parameters.newton.relative_tolerance;
+    if (at_floor)
+      pcout << last_newton.exact_floor_line() << std::endl;
+    if (handover > 0 && !at_floor)
+      {
+        unsigned int more = 0;
+        const bool   done = newton(more);
+        iterations += more;
+        if (!done)
+          return false;
+      }
+    if (contact_statistics.n_geometric_frozen > 0)
+      pcout << "    geometric loop converged with "
+            << contact_statistics.n_geometric_frozen
+            << " point(s) frozen by the geometric loop, "
+            << contact_statistics.n_geometric_violated
+            << " of them against the plain contact law" << std::endl;
+    return true;
   }
 
 

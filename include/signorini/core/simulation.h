@@ -19,11 +19,13 @@
 #include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/output_files.h>
 #include <signorini/solver/linear_solver.h>
+#include <signorini/solver/load_stepper.h>
 #include <signorini/solver/newton_solver.h>
 #include <signorini/solver/nonlinear_problem.h>
 #include <signorini/solver/rigid_modes.h>
 
 #include <array>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -53,7 +55,8 @@ namespace Signorini
    * One run of a scene: owns mesh, DoFs and vectors and wires the bulk
    * assembler, the contact problem and the linear solver. Its members are
    * defined by concern in source/core/: simulation.cc (mesh, DoFs,
-   * constraints, the run over the load steps), simulation_newton.cc (load
+   * constraints, assembly), simulation_run.cc (the run over the load
+   * steps: cuts, adaptive cycles), simulation_newton.cc (load
    * step and its geometric loop, Jacobian check), simulation_problem.cc
    * (the problem the Newton solver iterates on: residual, log rows,
    * linearised solve),
@@ -61,7 +64,8 @@ namespace Signorini
    * simulation_output.cc (reactions, reference errors, files, summary).
    */
   template <int dim>
-  class Simulation : private Solver::NonlinearProblem
+  class Simulation : private Solver::NonlinearProblem,
+                     private Solver::QuasiStaticProblem
   {
   public:
     /** @p prm: the parameters read into @p parameters (the models of
@@ -105,6 +109,48 @@ namespace Signorini
     }
 
   private:
+    // The run (simulation_run.cc).
+    void
+    print_setup();
+    void
+    print_step_header(const unsigned int                           step,
+                      const double                                 t_done,
+                      const std::chrono::steady_clock::time_point &start) const;
+    /** Load step @p step from @p t_done: returns the time reached. */
+    double
+    run_load_step(const unsigned int         step,
+                  const double               t_done,
+                  const Solver::LoadStepper &stepper);
+    /** Adaptive cycles within load step @p step (started at
+     * @p t_step_start). */
+    void
+    adapt_in_step(const unsigned int         step,
+                  const double               t_step_start,
+                  Solver::StepProgress &     progress,
+                  const Solver::LoadStepper &stepper);
+    /** Advances to the end of load step @p step; when the step cuts are
+     * used up, writes what converged and stops the run (RunError). */
+    void
+    advance_or_stop(const unsigned int         step,
+                    const double               t_step_start,
+                    Solver::StepProgress &     progress,
+                    const Solver::LoadStepper &stepper);
+    void
+    record_increment();
+    void
+    finish_run();
+    // Solver::QuasiStaticProblem.
+    bool
+    solve_step(const double  time,
+               const double  start_time,
+               unsigned int &iterations) override;
+    void
+    accept_step(const double time, const double start_time) override;
+    void
+    reject_step() override;
+    std::string
+    failure() const override;
+
     void
     make_mesh();
     void
@@ -131,6 +177,22 @@ namespace Signorini
                     const double   step_start_time,
                     unsigned int & n_iterations,
                     const bool     resume = false);
+    /** Loads, Dirichlet values and the first iterate of a load step. */
+    void
+    start_load_step(const double time,
+                    const double step_start_time,
+                    const bool   resume);
+    /** A pairing of the geometric loop and its sparsity pattern. */
+    void
+    pair_for_step(const double time, const double step_start_time);
+    /** The geometric loop's measure: the largest displacement change since
+     * @p state_at_pairing over the largest increment of the step. */
+    double
+    pairing_change(const TrilinosWrappers::MPI::Vector &state_at_pairing) const;
+    /** The geometric loop has converged: the last solve at the final
+     * tolerance if it was handed over at @p handover > 0. */
+    bool
+    finish_geometric_loop(const double handover, unsigned int &iterations);
     /** One adaptive refinement cycle at time @p time (the step started at
      * @p step_start_time): marks, refines, transfers state and
      * state_step_start to the new mesh. False: no cell was marked. */
@@ -292,6 +354,10 @@ namespace Signorini
     // extrapolated predictor; size 0: none yet.
     TrilinosWrappers::MPI::Vector last_increment; // owned
     double                        last_step_size = 0;
+    // The last converged state (a failed sub-step goes back to it), and
+    // whether any sub-step has converged yet.
+    TrilinosWrappers::MPI::Vector last_converged;
+    bool                          none_converged = true;
     TrilinosWrappers::MPI::Vector contact_force;    // on u DoFs [N]
     // R = F_int - F_ext + F_contact after hanging-node condensation: the
     // support forces at the Dirichlet DoFs (compute_reactions).

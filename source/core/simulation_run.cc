@@ -1,0 +1,324 @@
+// The run along the load path: set-up report, load steps with step cuts
+// (Solver::LoadStepper, with this Simulation as its problem), adaptive
+// cycles within and between steps, the end of the run.
+#include <deal.II/base/utilities.h>
+
+#include <signorini/core/simulation.h>
+#include <signorini/postprocess/format.h>
+
+#include <chrono>
+#include <iomanip>
+#include <unistd.h>
+
+namespace Signorini
+{
+  using Postprocess::format;
+
+
+  template <int dim>
+  void
+  Simulation<dim>::run()
+  {
+    make_mesh();
+    setup_system();
+    print_setup();
+    prepare_output();
+    const auto &times = parameters.load_stepping.step_times;
+    last_converged    = state;
+    const Solver::LoadStepper stepper(parameters.load_stepping.max_cuts,
+                                      pcout);
+    double     t_done = 0;
+    const auto start  = std::chrono::steady_clock::now();
+    for (unsigned int step = 1; step <= times.size(); ++step)
+      {
+        print_step_header(step, t_done, start);
+        t_done = run_load_step(step, t_done, stepper);
+      }
+    print_run_summary(times.size());
+    finish_run();
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::print_setup()
+  {
+    pcout << "Signorini: " << dim << "D, Q" << fe.degree << ", "
+          << triangulation.n_global_active_cells() << " cells, "
+          << dof_handler.n_dofs() << " displacement DoFs, "
+          << parameters.geometry.bodies.size() << " body(ies)" << std::endl;
+    if (parameters.projected_volumetric_strain)
+      pcout << "Volumetric strain projected onto Q" << fe.degree - 1
+            << " in each cell (B-bar)" << std::endl;
+    else
+      for (const auto &m : parameters.materials)
+        if (m.poissons_ratio >= 0.45)
+          pcout << "Note: material " << m.material_id
+                << " has Poisson's ratio " << m.poissons_ratio
+                << ": pure-displacement elements lock as nu -> 0.5 (contact "
+                   "pressures too high); set 'Finite element/Volumetric "
+                   "strain = projected'"
+                << std::endl;
+    if (contact->active())
+      pcout << "DoFs per block: u " << dof_handler.n_dofs() << ", lambda "
+            << contact->n_lambda_dofs() << ", Lambda "
+            << contact->n_friction_dofs() << " (total "
+            << contact->n_system() << ")" << std::endl;
+  }
+
+
+  // "Load step k of n, t = ...", with elapsed and estimated remaining time
+  // (from the share of the load path done) on a terminal only: log files
+  // and test outputs stay reproducible. (Under OpenMPI the ranks' stdout is
+  // a pseudo-terminal even when mpirun's output goes to a file; their
+  // stderr is a pipe.)
+  template <int dim>
+  void
+  Simulation<dim>::print_step_header(
+    const unsigned int                                 step,
+    const double                                       t_done,
+    const std::chrono::steady_clock::time_point &start) const
+  {
+    const auto &times = parameters.load_stepping.step_times;
+    const bool  show_eta =
+      isatty(STDOUT_FILENO) != 0 && isatty(STDERR_FILENO) != 0;
+    pcout << "Load step " << step << " of " << times.size()
+          << ", t = " << format(times[step - 1], 4);
+    if (show_eta && t_done > 0)
+      {
+        const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                        start)
+            .count();
+        const double left =
+          elapsed / t_done * std::max(0., times.back() - t_done);
+        pcout << std::fixed << std::setprecision(1) << "  (elapsed "
+              << elapsed << " s, about " << left << " s left)"
+              << std::defaultfloat << std::setprecision(6);
+      }
+    pcout << std::endl;
+  }
+
+
+  // One load step from @p t_done: sub-steps with cuts, adaptive cycles
+  // after it ('Steps = every' or 'last'), its results, adaptive cycles for
+  // the next step ('between'). Returns the time reached.
+  template <int dim>
+  double
+  Simulation<dim>::run_load_step(const unsigned int         step,
+                                 const double               t_done,
+                                 const Solver::LoadStepper &stepper)
+  {
+    const auto &times = parameters.load_stepping.step_times;
+    history_step      = step;
+    cycle_detections = points_frozen = points_released = line_searches = 0;
+    Solver::StepProgress progress;
+    progress.t_done      = t_done;
+    progress.t_sub_start = t_done;
+    advance_or_stop(step, t_done, progress, stepper);
+    const auto &adaptivity = parameters.adaptivity;
+    using AdaptedSteps     = AdaptivityParameters::Steps;
+    if (adaptivity.steps == AdaptedSteps::every ||
+        (adaptivity.steps == AdaptedSteps::last && step == times.size()))
+      adapt_in_step(step, t_done, progress, stepper);
+    step_cuts = progress.cuts;
+    write_step_results(step, times[step - 1], progress.iterations);
+    // 'Steps = between': the mesh follows the converged state; the next
+    // step starts on it from the transferred state (its increment: the
+    // extrapolated predictor's).
+    if (adaptivity.steps == AdaptedSteps::between && step < times.size())
+      for (unsigned int cycle = 1; cycle <= adaptivity.cycles; ++cycle)
+        {
+          pcout << "  adaptive cycle " << cycle << " of " << adaptivity.cycles
+                << " for the next step" << std::endl;
+          if (!adapt_mesh(progress.t_done, progress.t_sub_start))
+            break;
+          record_increment();
+          last_converged = state;
+        }
+    return progress.t_done;
+  }
+
+
+  // Adaptive refinement within a step: refine, transfer, solve the last
+  // sub-step again on the new mesh from the transferred converged state;
+  // if that fails, from its transferred start, with step cuts.
+  template <int dim>
+  void
+  Simulation<dim>::adapt_in_step(const unsigned int         step,
+                                 const double               t_step_start,
+                                 Solver::StepProgress &     progress,
+                                 const Solver::LoadStepper &stepper)
+  {
+    const unsigned int cycles = parameters.adaptivity.cycles;
+    for (unsigned int cycle = 1; cycle <= cycles; ++cycle)
+      {
+        pcout << "  adaptive cycle " << cycle << " of " << cycles << std::endl;
+        if (!adapt_mesh(progress.t_done, progress.t_sub_start))
+          break;
+        unsigned int iterations = 0;
+        const bool   ok         = solve_load_step(progress.t_done,
+                                          progress.t_sub_start,
+                                          iterations,
+                                          true);
+        progress.iterations += iterations;
+        if (!ok)
+          {
+            pcout << "  not converged on the refined mesh: again from the "
+                     "start of the step"
+                  << std::endl;
+            state = state_step_start;
+            update_solution();
+            progress.t_done = progress.t_sub_start;
+            last_converged  = state;
+            advance_or_stop(step, t_step_start, progress, stepper);
+          }
+        record_increment();
+        last_converged = state;
+      }
+  }
+
+
+  // The load stepper's advance to the end of the step; when the cuts are
+  // used up, the last converged sub-step of this step, if any, is written
+  // as the step's results (at its time), the run summary printed, and the
+  // run stopped.
+  template <int dim>
+  void
+  Simulation<dim>::advance_or_stop(const unsigned int         step,
+                                   const double               t_step_start,
+                                   Solver::StepProgress &     progress,
+                                   const Solver::LoadStepper &stepper)
+  {
+    if (stepper.advance(*this,
+                        progress,
+                        parameters.load_stepping.step_times[step - 1]))
+      return;
+    const bool partial = progress.t_done > t_step_start;
+    if (partial)
+      {
+        step_cuts = progress.cuts - 1;
+        pcout << "  results of the last converged sub-step (t = "
+              << format(progress.t_done, 4) << ") written as step " << step
+              << std::endl;
+        write_step_results(step, progress.t_done, progress.iterations);
+      }
+    print_run_summary(step - (partial ? 0 : 1), step);
+    throw RunError("load step " + std::to_string(step) +
+                   " did not converge between t = " +
+                   format(progress.t_done, 4) +
+                   " and t = " + format(progress.t_failed, 4) + " after " +
+                   std::to_string(parameters.load_stepping.max_cuts) +
+                   " step cuts: " + newton_failure +
+                   ". The results of the completed steps" +
+                   (partial ? " and of the last converged sub-step" : "") +
+                   " are in '" + parameters.output.directory + "'. " +
+                   failure_advice());
+  }
+
+
+  template <int dim>
+  bool
+  Simulation<dim>::solve_step(const double  time,
+                              const double  start_time,
+                              unsigned int &iterations)
+  {
+    return solve_load_step(time, start_time, iterations);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::accept_step(const double time, const double start_time)
+  {
+    record_increment();
+    last_step_size = time - start_time;
+    last_converged = state;
+    none_converged = false;
+    // The quadrature-point history of the materials follows the converged
+    // (sub)steps only.
+    for (auto &[id, material] : materials)
+      material->commit();
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::reject_step()
+  {
+    // The failed iterates go to newton_history.csv now: the retry may be
+    // killed, or the run stop.
+    append_newton_history();
+    state = last_converged;
+    update_solution();
+    for (auto &[id, material] : materials)
+      material->roll_back();
+    // Back to the initial state: the retry needs the initial multipliers
+    // again ('Initial status').
+    if (none_converged)
+      first_pairing = true;
+  }
+
+
+  template <int dim>
+  std::string
+  Simulation<dim>::failure() const
+  {
+    return newton_failure;
+  }
+
+
+  // The converged increment of the last (sub)step: the extrapolated
+  // predictor of the next one.
+  template <int dim>
+  void
+  Simulation<dim>::record_increment()
+  {
+    last_increment.reinit(owned_system, mpi_communicator);
+    for (const auto i : owned_system)
+      last_increment[i] = state[i] - state_step_start[i];
+    last_increment.compress(VectorOperation::insert);
+  }
+
+
+  // After the last step: the Jacobian check's verdict, the count of
+  // failed reference checks, the timing and memory summary.
+  template <int dim>
+  void
+  Simulation<dim>::finish_run()
+  {
+    const bool jacobian_checked =
+      parameters.newton.check_jacobian && contact->active();
+    if (jacobian_checked)
+      sout << "Jacobian check: largest relative error of the contact "
+              "Jacobian over the run = "
+           << std::scientific << std::setprecision(1) << jacobian_error_max
+           << " (tolerance 1.0e-06): "
+           << (jacobian_error_max < 1e-6 ? "PASS" : "FAIL")
+           << std::defaultfloat << std::endl;
+    if (jacobian_checked && !(jacobian_error_max < 1e-6))
+      ++n_failed_checks;
+    if (n_failed_checks > 0)
+      sout << "Reference checks: " << n_failed_checks
+           << " FAIL(s) over the run; exit code 4" << std::endl;
+    if (parameters.output.timing_summary)
+      {
+        timer.print_wall_time_statistics(mpi_communicator);
+        // Peak resident memory (VmHWM) of each rank.
+        Utilities::System::MemoryStats memory;
+        Utilities::System::get_memory_stats(memory);
+        const double mb = memory.VmHWM / 1024.;
+        sout << "Peak memory: " << std::fixed << std::setprecision(1)
+             << Utilities::MPI::max(mb, mpi_communicator)
+             << " MB on the largest rank, "
+             << Utilities::MPI::sum(mb, mpi_communicator) << " MB over "
+             << Utilities::MPI::n_mpi_processes(mpi_communicator)
+             << " rank(s)" << std::defaultfloat << std::setprecision(6)
+             << std::endl;
+      }
+  }
+
+
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace Signorini
