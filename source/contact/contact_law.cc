@@ -162,6 +162,128 @@ namespace Signorini
 
 
 
+    namespace
+    {
+      // Normal part: sections 3.1, 4 (L_c rows), 5 ("Contact").
+      template <int dim>
+      void
+      add_normal_response(const PointState<dim> &state,
+                          const double           rho_n,
+                          PointResponse<dim>    &response)
+      {
+        const Tensor<1, dim> &n = state.normal;
+        // Section 3.1: contact iff lambda_aug < 0 (strict: lambda_aug == 0
+        // is the kink, assigned to the free side).
+        const double lambda_aug = state.lambda - rho_n * state.gap;
+        response.in_contact =
+          ((lambda_aug < 0.) || state.freeze_contact) && !state.release;
+        if (response.in_contact)
+          {
+            // L_c^e = -w N^e lambda_aug n, L_c^c = -w psi g.
+            response.force          = -lambda_aug * n;
+            response.dforce_dd      = rho_n * outer_product(n, n);
+            response.dforce_dlambda = -n;
+            response.r_c            = -state.gap;
+            response.drc_dd         = -n;
+            response.drc_dlambda    = 0.;
+          }
+        else
+          {
+            // L_c^c = -w psi lambda / rho_n drives lambda to 0 (K_cc).
+            response.r_c         = -state.lambda / rho_n;
+            response.drc_dlambda = -1. / rho_n;
+          }
+        response.status =
+          (response.in_contact ? PointStatus::slip : PointStatus::free);
+      }
+
+
+      // What the stick and slip branches share: the state, the law's
+      // coefficients, P = I - n (x) n, the tangential slip v = P slip and
+      // mu lambda_f (s = -mu lambda_f of section 5).
+      template <int dim>
+      struct FrictionTerms
+      {
+        const PointState<dim> &state;
+        double                 mu, rho_t, mu_lf;
+        bool                   lambda_depends;
+        Tensor<2, dim>         P;
+        Tensor<1, dim>         v;
+      };
+
+
+      // Stick: P_B(h) = h.
+      template <int dim>
+      void
+      add_stick_response(const FrictionTerms<dim> &f,
+                         const Tensor<1, dim>     &h,
+                         PointResponse<dim>       &response)
+      {
+        const auto &T     = f.state.tangents;
+        response.status   = PointStatus::stick;
+        // L_f^e = -w mu lambda_f N^e h.
+        response.force += -f.mu_lf * h;
+        response.dforce_dd += -f.mu_lf * f.rho_t * f.P;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          response.dforce_dLambda[k] = -f.mu_lf * T[k];
+        // K_ec threshold coupling: -mu P_B(h).
+        if (f.lambda_depends)
+          response.dforce_dlambda += -f.mu * h;
+        // L_f^f = -w psi mu lambda_f T^T v; K_ff = 0.
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          {
+            response.r_f[k] = -f.mu_lf * (T[k] * f.v);
+            // T^T P = T^T since T is tangent.
+            response.drf_dd[k] = -f.mu_lf * T[k];
+            // K_fc (stick) = -mu T^T v; vanishes at convergence (v = 0).
+            if (f.lambda_depends)
+              response.drf_dlambda[k] = -f.mu * (T[k] * f.v);
+          }
+      }
+
+
+      // Slip: P_B(h) = q = h / |h|, K_B = (I - q (x) q) / |h|; with a
+      // frozen slip direction q does not depend on h, so K_B = 0.
+      template <int dim>
+      void
+      add_slip_response(const FrictionTerms<dim> &f,
+                        const Tensor<1, dim>     &q,
+                        const Tensor<2, dim>     &K_B,
+                        PointResponse<dim>       &response)
+      {
+        const auto &T           = f.state.tangents;
+        const auto &Lambda      = f.state.Lambda;
+        const double mu_lf      = f.mu_lf;
+        response.status         = PointStatus::slip;
+        response.slip_direction = q;
+        // K_B maps tangent vectors to tangent vectors, so K_B P = P K_B P.
+        const Tensor<2, dim> K_B_P = K_B * f.P;
+        // L_f^e = -w mu lambda_f N^e h / |h|.
+        response.force += -mu_lf * q;
+        response.dforce_dd += -mu_lf * f.rho_t * K_B_P;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          response.dforce_dLambda[k] = -mu_lf * (K_B * T[k]);
+        if (f.lambda_depends)
+          response.dforce_dlambda += -f.mu * q;
+        // L_f^f = +w psi (mu lambda_f / rho_t) T^T (T Lambda - h / |h|).
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          {
+            const double residual_k = Lambda[k] - T[k] * q;
+            response.r_f[k]         = mu_lf / f.rho_t * residual_k;
+            // K_fe = -mu lambda_f T^T K_B P (row k: (K_B P)^T tau_k).
+            response.drf_dd[k] = -mu_lf * (T[k] * K_B_P);
+            // K_ff = (mu lambda_f / rho_t) T^T (I - K_B) T.
+            for (unsigned int l = 0; l < dim - 1; ++l)
+              response.drf_dLambda[k][l] =
+                mu_lf / f.rho_t * ((k == l ? 1. : 0.) - T[k] * (K_B * T[l]));
+            // K_fc (slip) = (mu / rho_t) T^T (T Lambda - h / |h|).
+            if (f.lambda_depends)
+              response.drf_dlambda[k] = f.mu / f.rho_t * residual_k;
+          }
+      }
+    } // namespace
+
+
     template <int dim>
     PointResponse<dim>
     evaluate_contact_law(const PointState<dim> &state,
@@ -176,12 +298,6 @@ namespace Signorini
       AssertIsFinite(state.gap);
       AssertIsFinite(state.lambda);
 
-      const Tensor<1, dim> &n     = state.normal;
-      const double          rho_n = parameters.rho_n;
-
-      // P = I - n (x) n (section 2); dv/dd = P.
-      const Tensor<2, dim> P = identity_tensor<dim>() - outer_product(n, n);
-
       // Everything starts at zero: deal.II tensors are zero-initialised, so
       // only nonzero contributions are written below.
       PointResponse<dim> response;
@@ -191,46 +307,12 @@ namespace Signorini
       response.lambda_f        = 0.;
       response.r_c             = 0.;
       response.drc_dlambda     = 0.;
+      add_normal_response(state, parameters.rho_n, response);
 
-      // ---------------------------------------------------------------
-      // Normal part: sections 3.1, 4 (L_c rows), 5 ("Contact").
-      // ---------------------------------------------------------------
-      // Section 3.1: contact iff lambda_aug < 0 (strict: lambda_aug == 0
-      // is the kink, assigned to the free side).
-      const double lambda_aug = state.lambda - rho_n * state.gap;
-      response.in_contact =
-        ((lambda_aug < 0.) || state.freeze_contact) && !state.release;
-
-      if (response.in_contact)
-        {
-          // L_c^e = -w N^e lambda_aug n, L_c^c = -w psi g.
-          response.force          = -lambda_aug * n;
-          response.dforce_dd      = rho_n * outer_product(n, n);
-          response.dforce_dlambda = -n;
-          response.r_c            = -state.gap;
-          response.drc_dd         = -n;
-          response.drc_dlambda    = 0.;
-        }
-      else
-        {
-          // L_c^c = -w psi lambda / rho_n drives lambda to 0 (K_cc).
-          response.r_c         = -state.lambda / rho_n;
-          response.drc_dlambda = -1. / rho_n;
-        }
-
-      response.status =
-        (response.in_contact ? PointStatus::slip : PointStatus::free);
-
-      // ---------------------------------------------------------------
       // Friction: sections 3.2, 3.3, 4 (L_f rows), 5 ("Friction").
-      // ---------------------------------------------------------------
       // mu == 0: no friction unknowns at all (section 4), everything stays 0.
       if (parameters.mu == 0.)
         return response;
-
-      const double mu    = parameters.mu;
-      const double rho_t = parameters.rho_t;
-      const auto  &T     = state.tangents;
 
       // Section 3.3: Newton on the threshold (lambda_f = lambda, default) or
       // frozen threshold. No clamping of the sign of lambda_f: the formulas
@@ -239,8 +321,7 @@ namespace Signorini
       // lambda > 0.
       const double lambda_f =
         (parameters.threshold_newton ? state.lambda : state.lambda_f_frozen);
-      const bool lambda_depends = parameters.threshold_newton;
-      response.lambda_f         = lambda_f;
+      response.lambda_f = lambda_f;
 
       // Section 3.3: in contact with lambda_f == 0 is treated as a free
       // point for friction, otherwise K_ff = 0 (stick) or
@@ -251,7 +332,6 @@ namespace Signorini
       response.friction_active =
         response.in_contact &&
         (std::abs(lambda_f) > parameters.zero_threshold);
-
       if (!response.friction_active)
         {
           // L_f^f = +w psi Lambda, K_ff = I: drives Lambda to 0; weighted
@@ -263,18 +343,24 @@ namespace Signorini
           return response;
         }
 
-      // h = T Lambda + rho_t v (section 3.2). v is projected once more so
-      // that a slightly non-tangent input cannot leak into the normal
-      // direction; this is consistent with dv/dd = P since P P = P.
-      const Tensor<1, dim> v = P * state.slip;
-      Tensor<1, dim>       T_Lambda;
+      // P = I - n (x) n (section 2); dv/dd = P. h = T Lambda + rho_t v
+      // (section 3.2). v is projected once more so that a slightly
+      // non-tangent input cannot leak into the normal direction; this is
+      // consistent with dv/dd = P since P P = P.
+      const Tensor<2, dim> P =
+        identity_tensor<dim>() - outer_product(state.normal, state.normal);
+      const FrictionTerms<dim> f{state,
+                                 parameters.mu,
+                                 parameters.rho_t,
+                                 parameters.mu * lambda_f,
+                                 parameters.threshold_newton,
+                                 P,
+                                 P * state.slip};
+      Tensor<1, dim> T_Lambda;
       for (unsigned int k = 0; k < dim - 1; ++k)
-        T_Lambda += state.Lambda[k] * T[k];
-      const Tensor<1, dim> h      = T_Lambda + rho_t * v;
+        T_Lambda += state.Lambda[k] * state.tangents[k];
+      const Tensor<1, dim> h      = T_Lambda + f.rho_t * f.v;
       const double         norm_h = h.norm();
-
-      // s = -mu lambda_f of section 5, written as -mu lambda_f throughout.
-      const double mu_lf = mu * lambda_f;
 
       // A frozen slip direction (anti-cycling), carried into the current
       // tangent plane; ignored if the plane turned away from it.
@@ -289,73 +375,20 @@ namespace Signorini
       // (different in SI and in mm-N-MPa). Such a tie is stick: the point
       // has not slipped in this step yet.
       if ((norm_h <= 1. + stick_tie || state.freeze_stick) && !frozen_slip)
-        {
-          // Stick: P_B(h) = h.
-          response.status = PointStatus::stick;
-
-          // L_f^e = -w mu lambda_f N^e h.
-          response.force += -mu_lf * h;
-          response.dforce_dd += -mu_lf * rho_t * P;
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            response.dforce_dLambda[k] = -mu_lf * T[k];
-          // K_ec threshold coupling: -mu P_B(h).
-          if (lambda_depends)
-            response.dforce_dlambda += -mu * h;
-
-          // L_f^f = -w psi mu lambda_f T^T v; K_ff = 0.
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            {
-              response.r_f[k] = -mu_lf * (T[k] * v);
-              // T^T P = T^T since T is tangent.
-              response.drf_dd[k] = -mu_lf * T[k];
-              // K_fc (stick) = -mu T^T v; vanishes at convergence (v = 0).
-              if (lambda_depends)
-                response.drf_dlambda[k] = -mu * (T[k] * v);
-            }
-        }
+        add_stick_response(f, h, response);
+      else if (frozen_slip)
+        add_slip_response(f, q_frozen, Tensor<2, dim>(), response);
       else
         {
-          // Slip: P_B(h) = h / |h|, K_B = (I - q (x) q) / |h|, q = h / |h|.
-          response.status = PointStatus::slip;
-
-          // Frozen: q does not depend on h, so K_B = 0.
-          const Tensor<1, dim> q = frozen_slip ? q_frozen : h / norm_h;
-          response.slip_direction = q;
-          const Tensor<2, dim> K_B =
-            frozen_slip ?
-              Tensor<2, dim>() :
-              (identity_tensor<dim>() - outer_product(q, q)) / norm_h;
-          // K_B maps tangent vectors to tangent vectors, so K_B P = P K_B P.
-          const Tensor<2, dim> K_B_P = K_B * P;
-
-          // L_f^e = -w mu lambda_f N^e h / |h|.
-          response.force += -mu_lf * q;
-          response.dforce_dd += -mu_lf * rho_t * K_B_P;
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            response.dforce_dLambda[k] = -mu_lf * (K_B * T[k]);
-          if (lambda_depends)
-            response.dforce_dlambda += -mu * q;
-
-          // L_f^f = +w psi (mu lambda_f / rho_t) T^T (T Lambda - h / |h|).
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            {
-              const double residual_k = state.Lambda[k] - T[k] * q;
-              response.r_f[k]         = mu_lf / rho_t * residual_k;
-              // K_fe = -mu lambda_f T^T K_B P (row k: (K_B P)^T tau_k).
-              response.drf_dd[k] = -mu_lf * (T[k] * K_B_P);
-              // K_ff = (mu lambda_f / rho_t) T^T (I - K_B) T.
-              for (unsigned int l = 0; l < dim - 1; ++l)
-                response.drf_dLambda[k][l] =
-                  mu_lf / rho_t * ((k == l ? 1. : 0.) - T[k] * (K_B * T[l]));
-              // K_fc (slip) = (mu / rho_t) T^T (T Lambda - h / |h|).
-              if (lambda_depends)
-                response.drf_dlambda[k] = mu / rho_t * residual_k;
-            }
+          const Tensor<1, dim> q = h / norm_h;
+          add_slip_response(f,
+                            q,
+                            (identity_tensor<dim>() - outer_product(q, q)) /
+                              norm_h,
+                            response);
         }
-
       return response;
     }
-
 
 
     template <int dim>

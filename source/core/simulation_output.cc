@@ -357,6 +357,8 @@ namespace Signorini
   }
 
 
+  // The step's report on screen (iterations, reactions, pairs, reference
+  // checks) and its statistics.csv line.
   template <int dim>
   std::string
   Simulation<dim>::write_statistics(const unsigned int step,
@@ -368,21 +370,12 @@ namespace Signorini
     for (const auto i : locally_owned)
       u_max = std::max(u_max, std::abs(solution[i]));
     u_max = Utilities::MPI::max(u_max, mpi_communicator);
-
-    std::vector<std::string> row = {std::to_string(step),
-                                    format(time),
-                                    std::to_string(newton_iterations),
-                                    std::to_string(step_cuts),
-                                    std::to_string(cycle_detections),
-                                    std::to_string(points_frozen),
-                                    format(u_max)};
     step_iterations.push_back(newton_iterations);
     run_cuts += step_cuts;
     run_cycles += cycle_detections;
     run_frozen += points_frozen;
     run_released += points_released;
     run_line_searches += line_searches;
-    const char *axis[] = {"x", "y", "z"};
     // Contact pair summaries, their forces with round-off (relative to the
     // force level) set to zero so that output does not depend on the ranks.
     auto summary = contact->active() ?
@@ -393,55 +386,48 @@ namespace Signorini
       for (unsigned int d = 0; d < dim; ++d)
         if (std::abs(s.force[d]) < 1e-10 * force_scale)
           s.force[d] = 0;
-    const bool header = statistics_header.empty();
-    if (header)
-      statistics_header = {"step",
-                           "time",
-                           "newton_iterations",
-                           "step_cuts",
-                           "cycle_detections",
-                           "points_frozen",
-                           "max_abs_u"};
-    const auto add_text = [&](const std::string &name, std::string value) {
-      if (header)
-        statistics_header.push_back(name);
-      row.push_back(std::move(value));
+    print_step_report(newton_iterations, u_max);
+    // The step's reference checks, also kept for the end of a quiet run.
+    last_checks.clear();
+    const auto &ref    = parameters.reference;
+    const auto  report = [&](const char *what, const double e) {
+      if (e >= 0)
+        record_check(std::string(what) + " = " +
+                       format(std::max(e, 1e-16), 1) + " (tolerance " +
+                       format(ref.tolerance, 1) +
+                       "): " + (e <= ref.tolerance ? "PASS" : "FAIL"),
+                     e <= ref.tolerance);
     };
-    const auto add = [&](const std::string &name, const double value) {
-      add_text(name, format(value));
-    };
-    // Force-displacement data: each Dirichlet condition's reaction and the
-    // mean displacement it prescribes (constrained components only), each
-    // contact pair's force on the slave, closed points and, for a rigid
-    // obstacle, its prescribed motion.
-    for (unsigned int k = 0; k < reactions.size(); ++k)
+    report("displacement L2 relative error", errors.displacement_l2_relative);
+    report("stress max relative error", errors.stress_max_relative);
+    if (contact->active())
       {
-        const std::string name = "_" + std::to_string(k + 1) + "_";
-        for (unsigned int d = 0; d < dim; ++d)
-          add("reaction" + name + axis[d], reactions[k][d]);
-        for (unsigned int d = 0; d < dim; ++d)
-          if (dirichlet_components[k][d])
-            add("displacement" + name + axis[d], dirichlet_displacement[k][d]);
+        print_pair_report(summary);
+        for (const auto &check : contact_checks)
+          record_check(check.text, check.pass);
       }
-    for (unsigned int p = 0; p < summary.size(); ++p)
-      {
-        const std::string name = "_" + std::to_string(p + 1) + "_";
-        for (unsigned int d = 0; d < dim; ++d)
-          add("contact_force" + name + axis[d], summary[p].force[d]);
-        add_text("contact_points" + name + "closed",
-                 std::to_string(summary[p].n_contact));
-        if (parameters.contact.pairs[p].friction > 0)
-          {
-            add_text("contact_points" + name + "stick",
-                     std::to_string(summary[p].n_stick));
-            add_text("contact_points" + name + "slip",
-                     std::to_string(summary[p].n_slip));
-          }
-        if (summary[p].rigid)
-          for (unsigned int d = 0; d < dim; ++d)
-            add("obstacle_displacement" + name + axis[d],
-                summary[p].obstacle_displacement[d]);
-      }
+    pcout << std::flush;
+    return statistics_lines(step, time, newton_iterations, u_max, summary);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::record_check(const std::string &text, const bool pass)
+  {
+    last_checks.push_back(text);
+    n_failed_checks += !pass;
+    pcout << "  reference check: " << text << "\n";
+  }
+
+
+  // Newton and Krylov iterations, anti-cycling counts, the largest
+  // displacement and the reactions of the step.
+  template <int dim>
+  void
+  Simulation<dim>::print_step_report(const unsigned int newton_iterations,
+                                     const double       u_max)
+  {
     pcout << "  Newton iterations: " << newton_iterations << "\n";
     if (parameters.linear_solver.type != LinearSolverType::direct)
       {
@@ -473,68 +459,120 @@ namespace Signorini
                           4);
         pcout << ")\n";
       }
-    const auto &ref = parameters.reference;
-    // The step's reference checks, also kept for the end of a quiet run.
-    last_checks.clear();
-    const auto check_line = [&](const std::string &text, const bool pass) {
-      last_checks.push_back(text);
-      n_failed_checks += !pass;
-      pcout << "  reference check: " << text << "\n";
-    };
-    const auto report = [&](const char *what, const double e) {
-      if (e < 0)
-        return;
-      check_line(std::string(what) + " = " + format(std::max(e, 1e-16), 1) +
-                   " (tolerance " + format(ref.tolerance, 1) +
-                   "): " + (e <= ref.tolerance ? "PASS" : "FAIL"),
-                 e <= ref.tolerance);
-    };
-    report("displacement L2 relative error", errors.displacement_l2_relative);
-    report("stress max relative error", errors.stress_max_relative);
-    if (contact->active())
-      {
-        for (unsigned int p = 0; p < summary.size(); ++p)
-          {
-            const auto &s = summary[p];
-            pcout << "  contact pair " << p + 1 << ": " << s.n_contact
-                  << " of " << s.n_points << " points closed";
-            if (parameters.contact.pairs[p].friction > 0)
-              pcout << " (stick " << s.n_stick << ", slip " << s.n_slip
-                    << ")";
-            pcout << ", force on master = (";
-            for (unsigned int d = 0; d < dim; ++d)
-              pcout << (d ? ", " : "") << format(s.force[d], 4);
-            pcout << "), max p = " << format(s.p_max, 4) << "\n";
-            // An open pair near contact, or one whose points find no
-            // master face at all, is worth a word: bodies loaded towards
-            // each other that close no point pass through each other
-            // between the contact points (a coarse curved surface), or
-            // do not face each other (ids swapped, normals away).
-            if (s.n_contact == 0 && s.n_paired == 0)
-              pcout << "  note: pair " << p + 1
-                    << ": no slave point finds the master within 'Contact/"
-                       "Projection tolerance': the surfaces do not face each "
-                       "other here (check the slave and master ids and the "
-                       "geometry)\n";
-            else if (s.n_contact == 0 && -s.max_gap < 0.5 * s.face_size)
-              {
-                pcout << "  note: pair " << p + 1
-                      << " closes no contact point; the nearest is "
-                      << format(-s.max_gap, 2) << " m from the master ("
-                      << format(-s.max_gap / s.face_size, 2)
-                      << " slave faces): if the bodies should touch here, "
-                         "the slave points may straddle the contact (refine "
-                         "the slave surface, or make the finer surface the "
-                         "slave)\n";
-              }
-          }
-        for (const auto &check : contact_checks)
-          check_line(check.text, check.pass);
-      }
-    pcout << std::flush;
+  }
 
-    // statistics.csv starts with the header at the first completed step
-    // (its columns follow the scene's conditions and pairs).
+
+  // Per contact pair: closed points, force, largest pressure, and a note
+  // for a pair that closes nothing.
+  template <int dim>
+  void
+  Simulation<dim>::print_pair_report(
+    const std::vector<typename Contact::ContactProblem<dim>::PairSummary>
+      &summary)
+  {
+    for (unsigned int p = 0; p < summary.size(); ++p)
+      {
+        const auto &s = summary[p];
+        pcout << "  contact pair " << p + 1 << ": " << s.n_contact << " of "
+              << s.n_points << " points closed";
+        if (parameters.contact.pairs[p].friction > 0)
+          pcout << " (stick " << s.n_stick << ", slip " << s.n_slip << ")";
+        pcout << ", force on master = (";
+        for (unsigned int d = 0; d < dim; ++d)
+          pcout << (d ? ", " : "") << format(s.force[d], 4);
+        pcout << "), max p = " << format(s.p_max, 4) << "\n";
+        // An open pair near contact, or one whose points find no master
+        // face at all, is worth a word: bodies loaded towards each other
+        // that close no point pass through each other between the contact
+        // points (a coarse curved surface), or do not face each other (ids
+        // swapped, normals away).
+        if (s.n_contact == 0 && s.n_paired == 0)
+          pcout << "  note: pair " << p + 1
+                << ": no slave point finds the master within 'Contact/"
+                   "Projection tolerance': the surfaces do not face each "
+                   "other here (check the slave and master ids and the "
+                   "geometry)\n";
+        else if (s.n_contact == 0 && -s.max_gap < 0.5 * s.face_size)
+          pcout << "  note: pair " << p + 1
+                << " closes no contact point; the nearest is "
+                << format(-s.max_gap, 2) << " m from the master ("
+                << format(-s.max_gap / s.face_size, 2)
+                << " slave faces): if the bodies should touch here, the "
+                   "slave points may straddle the contact (refine the slave "
+                   "surface, or make the finer surface the slave)\n";
+      }
+  }
+
+
+  // The step's statistics.csv line, with the header at the first step (its
+  // columns follow the scene's conditions and pairs): force-displacement
+  // data of each Dirichlet condition (its reaction and the mean
+  // displacement it prescribes, constrained components only), each contact
+  // pair's force on the master, closed points and, for a rigid obstacle,
+  // its prescribed motion.
+  template <int dim>
+  std::string
+  Simulation<dim>::statistics_lines(
+    const unsigned int step,
+    const double       time,
+    const unsigned int newton_iterations,
+    const double       u_max,
+    const std::vector<typename Contact::ContactProblem<dim>::PairSummary>
+      &summary)
+  {
+    std::vector<std::string> row = {std::to_string(step),
+                                    format(time),
+                                    std::to_string(newton_iterations),
+                                    std::to_string(step_cuts),
+                                    std::to_string(cycle_detections),
+                                    std::to_string(points_frozen),
+                                    format(u_max)};
+    const bool header = statistics_header.empty();
+    if (header)
+      statistics_header = {"step",
+                           "time",
+                           "newton_iterations",
+                           "step_cuts",
+                           "cycle_detections",
+                           "points_frozen",
+                           "max_abs_u"};
+    const auto add_text = [&](const std::string &name, std::string value) {
+      if (header)
+        statistics_header.push_back(name);
+      row.push_back(std::move(value));
+    };
+    const auto add = [&](const std::string &name, const double value) {
+      add_text(name, format(value));
+    };
+    const char *axis[] = {"x", "y", "z"};
+    for (unsigned int k = 0; k < reactions.size(); ++k)
+      {
+        const std::string name = "_" + std::to_string(k + 1) + "_";
+        for (unsigned int d = 0; d < dim; ++d)
+          add("reaction" + name + axis[d], reactions[k][d]);
+        for (unsigned int d = 0; d < dim; ++d)
+          if (dirichlet_components[k][d])
+            add("displacement" + name + axis[d], dirichlet_displacement[k][d]);
+      }
+    for (unsigned int p = 0; p < summary.size(); ++p)
+      {
+        const std::string name = "_" + std::to_string(p + 1) + "_";
+        for (unsigned int d = 0; d < dim; ++d)
+          add("contact_force" + name + axis[d], summary[p].force[d]);
+        add_text("contact_points" + name + "closed",
+                 std::to_string(summary[p].n_contact));
+        if (parameters.contact.pairs[p].friction > 0)
+          {
+            add_text("contact_points" + name + "stick",
+                     std::to_string(summary[p].n_stick));
+            add_text("contact_points" + name + "slip",
+                     std::to_string(summary[p].n_slip));
+          }
+        if (summary[p].rigid)
+          for (unsigned int d = 0; d < dim; ++d)
+            add("obstacle_displacement" + name + axis[d],
+                summary[p].obstacle_displacement[d]);
+      }
     const auto line = [](const std::vector<std::string> &fields) {
       std::string text;
       for (unsigned int c = 0; c < fields.size(); ++c)

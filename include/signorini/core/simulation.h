@@ -288,6 +288,23 @@ namespace Signorini
     write_statistics(const unsigned int step,
                      const double       time,
                      const unsigned int newton_iterations);
+    using PairSummaries =
+      std::vector<typename Contact::ContactProblem<dim>::PairSummary>;
+    void
+    print_step_report(const unsigned int newton_iterations, const double u_max);
+    void
+    print_pair_report(const PairSummaries &summary);
+    /** Prints a reference check and counts it if it failed. */
+    void
+    record_check(const std::string &text, const bool pass);
+    /** The statistics.csv line of the step (with the header first at the
+     * first step). */
+    std::string
+    statistics_lines(const unsigned int   step,
+                     const double         time,
+                     const unsigned int   newton_iterations,
+                     const double         u_max,
+                     const PairSummaries &summary);
     /** Appends the Newton rows since the last call to newton_history.csv. */
     void
     append_newton_history();
