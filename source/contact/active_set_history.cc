@@ -16,6 +16,8 @@
 
 #include "helpers.h"
 
+#include <boost/serialization/utility.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -173,48 +175,71 @@ namespace Signorini
     }
 
 
+    // A status carrier of the release extrapolation: a point, or a
+    // multiplier node of a node-status pair, with its class at this
+    // iterate.
     template <int dim>
-    unsigned int
-    ContactProblem<dim>::extrapolate_releases()
+    struct ContactProblem<dim>::ReleaseCarrier
     {
-      const unsigned int n_pairs = parameters.contact.pairs.size();
-      // The status carriers of every pair (points; multiplier nodes on
-      // node-status pairs) by class at this iterate: tension (closed in
-      // the last solve, open now), compression (closed both), open (both),
-      // entered (open in the last solve, closed now).
-      enum : int
+      // tension: closed in the last solve, open now; compression: closed
+      // both; open: both; entered: open in the last solve, closed now.
+      enum Kind : int
       {
         tension = 0,
         compression,
         open,
         entered
       };
-      const auto class_of = [](const bool before, const bool now) {
-        return before ? (now ? compression : tension) : (now ? entered : open);
-      };
-      struct Carrier
+      static int
+      class_of(const bool before, const bool now)
       {
-        Point<dim>              x;
-        int                     kind;
-        int                     point; // index into points, or -1 (node)
-        types::global_dof_index dof;
-        bool                    kept; // closed again after such a release
-      };
-      std::vector<std::vector<Carrier>> carriers(n_pairs);
+        return before ? (now ? compression : tension) : (now ? entered : open);
+      }
+      Point<dim>              x;
+      int                     kind;
+      int                     point; // index into points, or -1 (node)
+      types::global_dof_index dof;
+      bool                    kept; // closed again after such a release
+    };
+
+
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::extrapolate_releases()
+    {
+      const auto   carriers   = release_carriers();
+      unsigned int n_released = 0;
+      for (unsigned int p = 0; p < carriers.size(); ++p)
+        // Frictionless pairs only: with friction the tension band does not
+        // follow the halving (SSNV128 in one step: 9 -> 11 Newton).
+        if (law_parameters(p).mu == 0)
+          n_released += release_mirrored(carriers[p]);
+      return Utilities::MPI::sum(n_released, comm);
+    }
+
+
+    // The carriers of every pair by class (points; multiplier nodes on
+    // node-status pairs); a carrier released early and closed again is
+    // kept closed for the rest of the Newton solve.
+    template <int dim>
+    std::vector<std::vector<typename ContactProblem<dim>::ReleaseCarrier>>
+    ContactProblem<dim>::release_carriers()
+    {
+      using Carrier = ReleaseCarrier;
+      std::vector<std::vector<Carrier>> carriers(
+        parameters.contact.pairs.size());
       for (unsigned int i = 0; i < points.size(); ++i)
         {
           auto              &point = points[i];
           const unsigned int p     = slave_faces[point.face].pair;
           const bool         now   = point.status != PointStatus::free;
-          // Released early and closed again: not released early again in
-          // this Newton solve.
           if (point.extrapolated && now)
             point.keep_closed = true;
           point.extrapolated = false;
           if (!node_status_pair[p])
             carriers[p].push_back(
               {point.x_ref,
-               class_of(point.status_before != PointStatus::free, now),
+               Carrier::class_of(point.status_before != PointStatus::free, now),
                static_cast<int>(i),
                0,
                point.keep_closed || point.freeze_contact});
@@ -233,107 +258,103 @@ namespace Signorini
               const auto before = node_active_solved.find(dof);
               carriers[face.pair].push_back(
                 {face.X[k],
-                 class_of(before != node_active_solved.end() && before->second,
-                          now),
+                 Carrier::class_of(
+                   before != node_active_solved.end() && before->second, now),
                  -1,
                  dof,
                  node_kept.count(dof) > 0});
             }
       node_extrapolated.clear();
+      return carriers;
+    }
 
-      unsigned int n_released = 0;
-      for (unsigned int p = 0; p < n_pairs; ++p)
+
+    // One pair's release extrapolation (collective): while its zone
+    // shrinks (none entered, some in tension), the carriers in compression
+    // whose mirror image across their nearest tension carrier lies in the
+    // band are opened for this solve. Returns those released here.
+    template <int dim>
+    unsigned int
+    ContactProblem<dim>::release_mirrored(
+      const std::vector<ReleaseCarrier> &carriers)
+    {
+      using Carrier = ReleaseCarrier;
+      // All carriers of the pair, from all ranks (position and class).
+      std::vector<std::pair<Point<dim>, int>> mine;
+      for (const auto &c : carriers)
+        mine.emplace_back(c.x, c.kind);
+      std::vector<std::pair<Point<dim>, unsigned int>> all, band;
+      std::vector<int>                                 kind;
+      for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+        for (const auto &[x, k] : part)
+          {
+            if (k == Carrier::tension)
+              band.emplace_back(x, band.size());
+            all.emplace_back(x, all.size());
+            kind.push_back(k);
+          }
+      if (band.empty() ||
+          std::find(kind.begin(), kind.end(), int(Carrier::entered)) !=
+            kind.end())
+        return 0;
+      const auto band_tree = pack_rtree(band);
+      const auto all_tree  = pack_rtree(all);
+      // Candidates: carriers in compression whose mirror image across their
+      // nearest tension carrier lies in the band (the carrier nearest to
+      // the image is in tension), with their distance to it.
+      std::vector<std::pair<const Carrier *, double>> candidates;
+      for (const auto &c : carriers)
         {
-          // Frictionless pairs only: with friction the tension band does
-          // not follow the halving (SSNV128 in one step: 9 -> 11 Newton).
-          if (law_parameters(p).mu > 0)
+          if (c.kind != Carrier::compression || c.kept)
             continue;
-          // All carriers of the pair, from all ranks (coordinates and
-          // class).
-          std::vector<double> pack;
-          for (const auto &c : carriers[p])
+          std::vector<std::pair<Point<dim>, unsigned int>> hit;
+          band_tree.query(boost::geometry::index::nearest(c.x, 1),
+                          std::back_inserter(hit));
+          const Point<dim> image    = c.x + 2. * (hit[0].first - c.x);
+          const double     distance = c.x.distance(hit[0].first);
+          hit.clear();
+          all_tree.query(boost::geometry::index::nearest(image, 1),
+                         std::back_inserter(hit));
+          if (kind[hit[0].second] == Carrier::tension)
+            candidates.emplace_back(&c, distance);
+        }
+      // At most as many as the band holds, and at most half of those in
+      // compression, the nearest to the band first: on a graded mesh a band
+      // of a few long elements mirrors onto the whole zone, and a pair left
+      // without contact would float.
+      const std::size_t n_compression =
+        std::count(kind.begin(), kind.end(), int(Carrier::compression));
+      const std::size_t   cap = std::min(band.size(), n_compression / 2);
+      std::vector<double> mine_d;
+      for (const auto &c : candidates)
+        mine_d.push_back(c.second);
+      std::vector<double> distances;
+      for (const auto &part : Utilities::MPI::all_gather(comm, mine_d))
+        distances.insert(distances.end(), part.begin(), part.end());
+      if (cap == 0 || distances.empty())
+        return 0;
+      std::sort(distances.begin(), distances.end());
+      const double limit      = distances[std::min(cap, distances.size()) - 1];
+      unsigned int n_released = 0;
+      for (const auto &candidate : candidates)
+        {
+          if (candidate.second > limit)
+            continue;
+          const Carrier &c = *candidate.first;
+          if (c.point >= 0)
             {
-              for (unsigned int d = 0; d < dim; ++d)
-                pack.push_back(c.x[d]);
-              pack.push_back(c.kind);
+              points[c.point].release      = true;
+              points[c.point].extrapolated = true;
+              ++n_released;
             }
-          std::vector<std::pair<Point<dim>, unsigned int>> all, band;
-          std::vector<int>                                 kind;
-          for (const auto &part : Utilities::MPI::all_gather(comm, pack))
-            for (unsigned int i = 0; i + dim < part.size(); i += dim + 1)
-              {
-                Point<dim> x;
-                for (unsigned int d = 0; d < dim; ++d)
-                  x[d] = part[i + d];
-                const int k = static_cast<int>(part[i + dim]);
-                if (k == tension)
-                  band.emplace_back(x, band.size());
-                all.emplace_back(x, all.size());
-                kind.push_back(k);
-              }
-          // Only while the zone shrinks: none entered, some in tension.
-          if (band.empty() ||
-              std::find(kind.begin(), kind.end(), int(entered)) != kind.end())
-            continue;
-          const auto band_tree = pack_rtree(band);
-          const auto all_tree  = pack_rtree(all);
-          // Candidates: carriers in compression whose mirror image across
-          // their nearest tension carrier lies in the band (the carrier
-          // nearest to the image is in tension), with their distance to it.
-          std::vector<std::pair<const Carrier *, double>> candidates;
-          for (const auto &c : carriers[p])
+          else
             {
-              if (c.kind != compression || c.kept)
-                continue;
-              std::vector<std::pair<Point<dim>, unsigned int>> hit;
-              band_tree.query(boost::geometry::index::nearest(c.x, 1),
-                              std::back_inserter(hit));
-              const Point<dim> image    = c.x + 2. * (hit[0].first - c.x);
-              const double     distance = c.x.distance(hit[0].first);
-              hit.clear();
-              all_tree.query(boost::geometry::index::nearest(image, 1),
-                             std::back_inserter(hit));
-              if (kind[hit[0].second] == tension)
-                candidates.emplace_back(&c, distance);
-            }
-          // At most as many as the band holds, and at most half of those in
-          // compression, the nearest to the band first: on a graded mesh a
-          // band of a few long elements mirrors onto the whole zone, and
-          // a pair left without contact would float.
-          const std::size_t n_band = band.size();
-          const std::size_t n_compression =
-            std::count(kind.begin(), kind.end(), int(compression));
-          const std::size_t   cap = std::min(n_band, n_compression / 2);
-          std::vector<double> mine_d;
-          for (const auto &c : candidates)
-            mine_d.push_back(c.second);
-          std::vector<double> distances;
-          for (const auto &part : Utilities::MPI::all_gather(comm, mine_d))
-            distances.insert(distances.end(), part.begin(), part.end());
-          if (cap == 0 || distances.empty())
-            continue;
-          std::sort(distances.begin(), distances.end());
-          const double limit = distances[std::min(cap, distances.size()) - 1];
-          for (const auto &candidate : candidates)
-            {
-              if (candidate.second > limit)
-                continue;
-              const Carrier &c = *candidate.first;
-              if (c.point >= 0)
-                {
-                  points[c.point].release      = true;
-                  points[c.point].extrapolated = true;
-                  ++n_released;
-                }
-              else
-                {
-                  node_release.insert(c.dof);
-                  node_extrapolated.insert(c.dof);
-                  n_released += owned_multipliers.is_element(c.dof);
-                }
+              node_release.insert(c.dof);
+              node_extrapolated.insert(c.dof);
+              n_released += owned_multipliers.is_element(c.dof);
             }
         }
-      return Utilities::MPI::sum(n_released, comm);
+      return n_released;
     }
 
 

@@ -36,7 +36,90 @@ namespace Signorini
         return bound > 0 ? std::abs(f_t.norm() / bound - 1) :
                            std::numeric_limits<double>::infinity();
       }
+
+      // A slipping point or node whose friction force on the master @p f_t
+      // (normal part @p f_n) and slip @p v are measurable: whether the
+      // friction opposes the slip on the slave, and how far |f_t| is from
+      // mu |f_n|.
+      template <typename LawCheck, int dim>
+      void
+      add_slip_sample(LawCheck             &r,
+                      const Tensor<1, dim> &f_t,
+                      const Tensor<1, dim> &v,
+                      const double          f_n,
+                      const double          mu)
+      {
+        // f is the force on the master: the slave receives -f, which
+        // opposes v iff f_t . v > 0.
+        ++r.n_slipping;
+        const double c = cosine(f_t, v);
+        r.n_opposed += c > 0;
+        r.min_cosine = std::min(r.min_cosine, c);
+        r.max_deviation =
+          std::max(r.max_deviation, coulomb_deviation(f_t, f_n, mu));
+      }
+
+      template <int dim>
+      Tensor<1, dim>
+      tangential_force(const ContactPoint<dim> &point)
+      {
+        return point.force - (point.force * point.normal) * point.normal;
+      }
+
+      template <int dim>
+      Tensor<1, dim>
+      slip_vector(const ContactPoint<dim> &point)
+      {
+        Tensor<1, dim> v;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          v += point.slip[k] * point.tangents[k];
+        return v;
+      }
     } // namespace
+
+
+    // The force on the master at @p point from the multipliers of @p state,
+    // each in the basis the law reads it in (lambda with psi_lambda, dual
+    // with statuses per node; Lambda with psi): the traction on the slave
+    // is lambda n + mu lambda_f T Lambda, the force on the master its
+    // opposite.
+    template <int dim>
+    Tensor<1, dim>
+    ContactProblem<dim>::multiplier_force(
+      const ContactPoint                  &point,
+      const TrilinosWrappers::MPI::Vector &state) const
+    {
+      const auto        &face   = slave_faces[point.face];
+      const unsigned int p      = face.pair;
+      const double       mu     = parameters.contact.pairs[p].friction;
+      const unsigned int n_l    = face.lambda_dofs.size();
+      double             lambda = 0;
+      for (unsigned int l = 0; l < n_l; ++l)
+        lambda += point.psi_lambda[l] * state[face.lambda_dofs[l]];
+      Tensor<1, dim> force = -lambda * point.normal;
+      if (mu == 0)
+        return force;
+      if (friction_node_pair[p])
+        // Per node: mu lambda_l T Lambda_l, interpolated with psi~.
+        for (unsigned int l = 0; l < n_l; ++l)
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            force -= mu * point.psi_lambda[l] * state[face.lambda_dofs[l]] *
+                     state[face.friction_dofs[l * (dim - 1) + k]] *
+                     point.tangents[k];
+      else
+        {
+          Tensor<1, dim> T_Lambda;
+          for (unsigned int l = 0; l < n_l; ++l)
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              T_Lambda += point.psi[l] *
+                          state[face.friction_dofs[l * (dim - 1) + k]] *
+                          point.tangents[k];
+          const double lambda_f =
+            parameters.contact.frozen_threshold ? point.lambda_frozen : lambda;
+          force -= mu * lambda_f * T_Lambda;
+        }
+      return force;
+    }
 
 
     template <int dim>
@@ -61,121 +144,89 @@ namespace Signorini
 
       // The largest slip and friction force of each pair (the scale below
       // which a slipping point's direction is round-off).
-      std::vector<double> v_max(n_pairs, 0.), f_max(n_pairs, 0.);
-      const auto          tangential = [](const ContactPoint &point)
-      { return point.force - (point.force * point.normal) * point.normal; };
-      const auto slip_vector = [](const ContactPoint &point)
-      {
-        Tensor<1, dim> v;
-        for (unsigned int k = 0; k < dim - 1; ++k)
-          v += point.slip[k] * point.tangents[k];
-        return v;
-      };
+      SlipScales scales{std::vector<double>(n_pairs, 0.),
+                        std::vector<double>(n_pairs, 0.)};
       for (const auto &point : points)
         if (point.paired)
-        {
-          const unsigned int p = slave_faces[point.face].pair;
-          v_max[p]             = std::max(v_max[p], slip_vector(point).norm());
-          f_max[p]             = std::max(f_max[p], tangential(point).norm());
-        }
+          {
+            const unsigned int p = slave_faces[point.face].pair;
+            scales.v_max[p] =
+              std::max(scales.v_max[p], slip_vector(point).norm());
+            scales.f_max[p] =
+              std::max(scales.f_max[p], tangential_force(point).norm());
+          }
       for (unsigned int p = 0; p < n_pairs; ++p)
-      {
-        v_max[p] = Utilities::MPI::max(v_max[p], comm);
-        f_max[p] = Utilities::MPI::max(f_max[p], comm);
-      }
-      const auto measurable = [&](const unsigned int    p,
-                                  const Tensor<1, dim> &f,
-                                  const Tensor<1, dim> &v)
-      { return v.norm() > 1e-9 * v_max[p] && f.norm() > 1e-9 * f_max[p]; };
+        {
+          scales.v_max[p] = Utilities::MPI::max(scales.v_max[p], comm);
+          scales.f_max[p] = Utilities::MPI::max(scales.f_max[p], comm);
+        }
 
       for (const auto &point : points)
-      {
-        if (!point.paired)
-          continue;
-        const auto        &face = slave_faces[point.face];
-        const unsigned int p    = face.pair;
-        const double       mu   = parameters.contact.pairs[p].friction;
-        auto              &r    = result[p];
-        r.by_node               = node_status_pair[p];
-        r.force_rows += point.weight * point.force;
-
-        // The multipliers at the point, each in the basis the law reads
-        // it in: lambda with psi_lambda (dual with statuses per node),
-        // Lambda with psi.
-        const unsigned int n_l    = face.lambda_dofs.size();
-        double             lambda = 0;
-        Tensor<1, dim>     T_Lambda;
-        for (unsigned int l = 0; l < n_l; ++l)
-          lambda += point.psi_lambda[l] * state[face.lambda_dofs[l]];
-        // Traction on the slave lambda n + mu lambda_f T Lambda, so the
-        // force on the master is its opposite.
-        Tensor<1, dim> force = -lambda * point.normal;
-        if (mu > 0)
         {
+          if (!point.paired)
+            continue;
+          const auto        &face = slave_faces[point.face];
+          const unsigned int p    = face.pair;
+          const double       mu   = parameters.contact.pairs[p].friction;
+          auto              &r    = result[p];
+          r.force_rows += point.weight * point.force;
+          r.force_multipliers += point.weight * multiplier_force(point, state);
+          if (mu == 0)
+            continue;
+          const Tensor<1, dim> f_t = tangential_force(point);
+          const Tensor<1, dim> v   = slip_vector(point);
           if (friction_node_pair[p])
-            // Per node: mu lambda_l T Lambda_l, interpolated with psi~.
-            for (unsigned int l = 0; l < n_l; ++l)
-              for (unsigned int k = 0; k < dim - 1; ++k)
-                force -= mu * point.psi_lambda[l] * state[face.lambda_dofs[l]] *
-                         state[face.friction_dofs[l * (dim - 1) + k]] *
-                         point.tangents[k];
-          else
-          {
-            for (unsigned int l = 0; l < n_l; ++l)
-              for (unsigned int k = 0; k < dim - 1; ++k)
-                T_Lambda += point.psi[l] *
-                            state[face.friction_dofs[l * (dim - 1) + k]] *
-                            point.tangents[k];
-            const double lambda_f = parameters.contact.frozen_threshold ?
-                                      point.lambda_frozen :
-                                      lambda;
-            force -= mu * lambda_f * T_Lambda;
-          }
+            for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  add_entry(nodal[c],
+                            face.lambda_dofs[l],
+                            point.weight * point.psi[l] * point.force[c]);
+                  add_entry(nodal[dim + c],
+                            face.lambda_dofs[l],
+                            point.weight * point.psi_lambda[l] * v[c]);
+                  add_entry(nodal[2 * dim + c],
+                            face.lambda_dofs[l],
+                            point.weight * point.psi[l] * point.normal[c]);
+                }
+          else if (point.status == PointStatus::slip && point.friction_active &&
+                   scales.measurable(p, f_t, v))
+            add_slip_sample(r, f_t, v, point.force * point.normal, mu);
         }
-        r.force_multipliers += point.weight * force;
-
-        if (mu == 0)
-          continue;
-        const Tensor<1, dim> f_t = tangential(point);
-        const Tensor<1, dim> v   = slip_vector(point);
-        if (friction_node_pair[p])
-          for (unsigned int l = 0; l < n_l; ++l)
-            for (unsigned int c = 0; c < dim; ++c)
-            {
-              add_entry(nodal[c],
-                        face.lambda_dofs[l],
-                        point.weight * point.psi[l] * point.force[c]);
-              add_entry(nodal[dim + c],
-                        face.lambda_dofs[l],
-                        point.weight * point.psi_lambda[l] * v[c]);
-              add_entry(nodal[2 * dim + c],
-                        face.lambda_dofs[l],
-                        point.weight * point.psi[l] * point.normal[c]);
-            }
-        else if (point.status == PointStatus::slip && point.friction_active &&
-                 measurable(p, f_t, v))
-        {
-          // f is the force on the master: the slave receives -f, which
-          // opposes v iff f_t . v > 0.
-          ++r.n_slipping;
-          const double c = cosine(f_t, v);
-          r.n_opposed += c > 0;
-          r.min_cosine = std::min(r.min_cosine, c);
-          r.max_deviation =
-            std::max(r.max_deviation,
-                     coulomb_deviation(f_t, point.force * point.normal, mu));
-        }
-      }
-
       if (any_friction_node)
-      {
-        for (auto &v : nodal)
-          v.compress(VectorOperation::add);
-        // Each owned slipping node once (it is on several faces).
-        std::set<types::global_dof_index> seen;
-        for (const auto &face : slave_faces)
-          if (friction_node_pair[face.pair])
-            for (const auto dof : face.lambda_dofs)
+        add_node_slip_samples(nodal, scales, result);
+
+      for (auto &r : result)
+        {
+          r.force_rows        = Utilities::MPI::sum(r.force_rows, comm);
+          r.force_multipliers = Utilities::MPI::sum(r.force_multipliers, comm);
+          r.n_slipping        = Utilities::MPI::sum(r.n_slipping, comm);
+          r.n_opposed         = Utilities::MPI::sum(r.n_opposed, comm);
+          r.min_cosine        = Utilities::MPI::min(r.min_cosine, comm);
+          r.max_deviation     = Utilities::MPI::max(r.max_deviation, comm);
+        }
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        result[p].by_node = node_status_pair[p];
+      return result;
+    }
+
+
+    // Statuses per node with friction: each owned slipping node once (it
+    // is on several faces), its force, weighted slip and normal summed in
+    // @p nodal.
+    template <int dim>
+    void
+    ContactProblem<dim>::add_node_slip_samples(
+      std::vector<TrilinosWrappers::MPI::Vector> &nodal,
+      const SlipScales                           &scales,
+      std::vector<LawCheck>                      &result) const
+    {
+      for (auto &v : nodal)
+        v.compress(VectorOperation::add);
+      std::set<types::global_dof_index> seen;
+      for (const auto &face : slave_faces)
+        if (friction_node_pair[face.pair])
+          for (const auto dof : face.lambda_dofs)
             {
               if (!owned_multipliers.is_element(dof) ||
                   !seen.insert(dof).second)
@@ -186,41 +237,23 @@ namespace Signorini
                 continue;
               Tensor<1, dim> F, W, n;
               for (unsigned int c = 0; c < dim; ++c)
-              {
-                F[c] = nodal[c][dof];
-                W[c] = nodal[dim + c][dof];
-                n[c] = nodal[2 * dim + c][dof];
-              }
+                {
+                  F[c] = nodal[c][dof];
+                  W[c] = nodal[dim + c][dof];
+                  n[c] = nodal[2 * dim + c][dof];
+                }
               if (n.norm() == 0)
                 continue;
               n /= n.norm();
               const Tensor<1, dim> F_t = F - (F * n) * n;
-              if (!measurable(face.pair, F_t, W))
+              if (!scales.measurable(face.pair, F_t, W))
                 continue;
-              auto &r = result[face.pair];
-              ++r.n_slipping;
-              const double c = cosine(F_t, W);
-              r.n_opposed += c > 0;
-              r.min_cosine    = std::min(r.min_cosine, c);
-              r.max_deviation = std::max(
-                r.max_deviation,
-                coulomb_deviation(
-                  F_t, F * n, parameters.contact.pairs[face.pair].friction));
+              add_slip_sample(result[face.pair],
+                              F_t,
+                              W,
+                              F * n,
+                              parameters.contact.pairs[face.pair].friction);
             }
-      }
-
-      for (auto &r : result)
-      {
-        r.force_rows        = Utilities::MPI::sum(r.force_rows, comm);
-        r.force_multipliers = Utilities::MPI::sum(r.force_multipliers, comm);
-        r.n_slipping        = Utilities::MPI::sum(r.n_slipping, comm);
-        r.n_opposed         = Utilities::MPI::sum(r.n_opposed, comm);
-        r.min_cosine        = Utilities::MPI::min(r.min_cosine, comm);
-        r.max_deviation     = Utilities::MPI::max(r.max_deviation, comm);
-      }
-      for (unsigned int p = 0; p < n_pairs; ++p)
-        result[p].by_node = node_status_pair[p];
-      return result;
     }
 
 

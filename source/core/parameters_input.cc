@@ -24,59 +24,103 @@ namespace Signorini
   using internal::to_doubles;
   using internal::to_unsigned;
 
+  namespace
+  {
+    // The boundary conditions against the dimension: components, one
+    // expression per component, points.
+    void
+    check_boundary_conditions(const BoundaryConditionParameters &bc,
+                              const unsigned int                 dim)
+    {
+      const auto &boundary_conditions = bc;
+      for (unsigned int k = 0; k < boundary_conditions.dirichlet.size(); ++k)
+        {
+          const auto       &d = boundary_conditions.dirichlet[k];
+          const std::string where =
+            "subsection 'Boundary conditions/Dirichlet " +
+            std::to_string(k + 1) + "'";
+          for (const unsigned int c : d.components)
+            if (c >= dim)
+              throw InputError(where +
+                               ", parameter 'Components': component z does not "
+                               "exist for Dimension = 2. Use x and/or y.");
+          // A component listed twice would take the value of its first
+          // expression only, silently.
+          for (unsigned int i = 0; i < d.components.size(); ++i)
+            if (std::count(d.components.begin(),
+                           d.components.begin() + i,
+                           d.components[i]))
+              throw InputError(where + ", parameter 'Components': component " +
+                               std::string(1, "xyz"[d.components[i]]) +
+                               " is listed twice. List each component once, "
+                               "with one expression per listed component in "
+                               "'Values'.");
+          if (d.values.size() != d.components.size())
+            throw InputError(
+              where +
+              ", parameter 'Values': " + std::to_string(d.values.size()) +
+              " expression(s) for " + std::to_string(d.components.size()) +
+              " component(s). Give one expression per listed "
+              "component, separated by ';'.");
+          if (!d.at_point.empty() && d.at_point.size() != dim)
+            throw InputError(where + ", parameter 'At point': give " +
+                             std::to_string(dim) + " coordinates.");
+        }
+      for (unsigned int k = 0; k < boundary_conditions.neumann.size(); ++k)
+        {
+          const auto        &n = boundary_conditions.neumann[k];
+          const unsigned int expected =
+            n.type == NeumannType::traction ? dim : 1;
+          if (n.values.size() != expected)
+            throw InputError(
+              "subsection 'Boundary conditions/Neumann " +
+              std::to_string(k + 1) +
+              "', parameter 'Values': " + std::to_string(n.values.size()) +
+              " expression(s) given, " + std::to_string(expected) +
+              " expected for this Type and Dimension.");
+        }
+      if (boundary_conditions.body_force.size() < dim)
+        throw InputError(
+          "subsection 'Boundary conditions', parameter 'Body "
+          "force': give at least Dimension expressions separated "
+          "by ';'.");
+    }
+
+
+    // A rigid obstacle's motion: dim translations, a rotation (one angle
+    // in 2D, a rotation vector in 3D, or 0) and its centre.
+    void
+    check_obstacle_motion(const ContactPairParameters &p,
+                          const std::string           &where,
+                          const unsigned int           dim)
+    {
+      if (p.obstacle_motion.size() < dim)
+        throw InputError(where + ", parameter 'Obstacle motion': give " +
+                         std::to_string(dim) +
+                         " expressions separated by ';'.");
+      const bool no_rotation = p.obstacle_rotation.size() == 1 &&
+                               Utilities::trim(p.obstacle_rotation[0]) == "0";
+      if (!no_rotation && p.obstacle_rotation.size() != (dim == 2 ? 1u : 3u))
+        throw InputError(where + ", parameter 'Obstacle rotation': give " +
+                         (dim == 2 ?
+                            std::string("the angle [rad] as one expression "
+                                        "of t") :
+                            std::string("the rotation vector (axis times "
+                                        "angle [rad]) as 3 expressions of t "
+                                        "separated by ';'")) +
+                         ", or 0.");
+      if (p.rotation_centre.size() < dim)
+        throw InputError(where + ", parameter 'Rotation centre': give " +
+                         std::to_string(dim) + " coordinates.");
+    }
+  } // namespace
+
+
   void
   Parameters::check_consistency() const
   {
     const unsigned int dim = dimension;
-    for (unsigned int k = 0; k < boundary_conditions.dirichlet.size(); ++k)
-      {
-        const auto &      d = boundary_conditions.dirichlet[k];
-        const std::string where =
-          "subsection 'Boundary conditions/Dirichlet " + std::to_string(k + 1) +
-          "'";
-        for (const unsigned int c : d.components)
-          if (c >= dim)
-            throw InputError(where +
-                             ", parameter 'Components': component z does not "
-                             "exist for Dimension = 2. Use x and/or y.");
-        // A component listed twice would take the value of its first
-        // expression only, silently.
-        for (unsigned int i = 0; i < d.components.size(); ++i)
-          if (std::count(d.components.begin(),
-                         d.components.begin() + i,
-                         d.components[i]))
-            throw InputError(where + ", parameter 'Components': component " +
-                             std::string(1, "xyz"[d.components[i]]) +
-                             " is listed twice. List each component once, "
-                             "with one expression per listed component in "
-                             "'Values'.");
-        if (d.values.size() != d.components.size())
-          throw InputError(where + ", parameter 'Values': " +
-                           std::to_string(d.values.size()) +
-                           " expression(s) for " +
-                           std::to_string(d.components.size()) +
-                           " component(s). Give one expression per listed "
-                           "component, separated by ';'.");
-        if (!d.at_point.empty() && d.at_point.size() != dim)
-          throw InputError(where + ", parameter 'At point': give " +
-                           std::to_string(dim) + " coordinates.");
-      }
-    for (unsigned int k = 0; k < boundary_conditions.neumann.size(); ++k)
-      {
-        const auto &       n = boundary_conditions.neumann[k];
-        const unsigned int expected =
-          n.type == NeumannType::traction ? dim : 1;
-        if (n.values.size() != expected)
-          throw InputError("subsection 'Boundary conditions/Neumann " +
-                           std::to_string(k + 1) + "', parameter 'Values': " +
-                           std::to_string(n.values.size()) +
-                           " expression(s) given, " + std::to_string(expected) +
-                           " expected for this Type and Dimension.");
-      }
-    if (boundary_conditions.body_force.size() < dim)
-      throw InputError("subsection 'Boundary conditions', parameter 'Body "
-                       "force': give at least Dimension expressions separated "
-                       "by ';'.");
+    check_boundary_conditions(boundary_conditions, dim);
     if (!reference.displacement.empty() && reference.displacement.size() != dim)
       throw InputError("subsection 'Reference solution', parameter "
                        "'Displacement': give Dimension expressions.");
@@ -109,7 +153,16 @@ namespace Signorini
                          "', parameter 'Mesh file': Shape = file needs a mesh "
                          "file name.");
 
-    // Contact.
+    check_contact();
+  }
+
+
+  // The contact settings against each other, the element degree, the
+  // linear solver and the dimension.
+  void
+  Parameters::check_contact() const
+  {
+    const unsigned int dim = dimension;
     const auto &c = contact;
     if (c.rule == IntegrationRule::newton_cotes && c.order != 1 &&
         c.order != 2 && c.order != 4 && c.order != 6)
@@ -160,28 +213,7 @@ namespace Signorini
                   "must be different boundaries (of different bodies).");
           }
         else
-          {
-            if (p.obstacle_motion.size() < dim)
-              throw InputError(where + ", parameter 'Obstacle motion': give " +
-                               std::to_string(dim) +
-                               " expressions separated by ';'.");
-            const bool no_rotation = p.obstacle_rotation.size() == 1 &&
-                                     Utilities::trim(p.obstacle_rotation[0]) ==
-                                       "0";
-            if (!no_rotation &&
-                p.obstacle_rotation.size() != (dim == 2 ? 1u : 3u))
-              throw InputError(
-                where + ", parameter 'Obstacle rotation': give " +
-                (dim == 2 ? std::string("the angle [rad] as one expression "
-                                        "of t") :
-                            std::string("the rotation vector (axis times "
-                                        "angle [rad]) as 3 expressions of t "
-                                        "separated by ';'")) +
-                ", or 0.");
-            if (p.rotation_centre.size() < dim)
-              throw InputError(where + ", parameter 'Rotation centre': give " +
-                               std::to_string(dim) + " coordinates.");
-          }
+          check_obstacle_motion(p, where, dim);
       }
   }
 

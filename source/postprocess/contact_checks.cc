@@ -20,6 +20,40 @@ namespace Signorini
       using Records =
         std::vector<typename Contact::ContactProblem<dim>::PointRecord>;
 
+      // A check of @p error against @p tolerance; @p text is its line up
+      // to the verdict. @p value and @p reference where one number is
+      // compared.
+      CheckResult
+      checked(const std::string &what,
+              const double       error,
+              const double       tolerance,
+              const bool         pass,
+              const std::string &text,
+              const double       value     = CheckResult::none,
+              const double       reference = CheckResult::none)
+      {
+        CheckResult r;
+        r.what      = what;
+        r.value     = value;
+        r.reference = reference;
+        r.error     = error;
+        r.tolerance = tolerance;
+        r.pass      = pass;
+        r.text      = text + "): " + (pass ? "PASS" : "FAIL");
+        return r;
+      }
+
+      // A check that does not apply at this step: said, not counted.
+      CheckResult
+      not_checked(const std::string &what, const std::string &text)
+      {
+        CheckResult r;
+        r.what    = what;
+        r.checked = false;
+        r.text    = text;
+        return r;
+      }
+
       // "what = value (reference r) <kind> e (tolerance t): PASS|FAIL"
       CheckResult
       compared(const std::string &what,
@@ -29,12 +63,16 @@ namespace Signorini
                const double       tolerance,
                const char        *error_kind)
       {
-        const bool pass = error <= tolerance;
-        return {what + " = " + format(value, 4) + " (reference " +
-                  format(reference, 4) + ") " + error_kind + " " +
-                  format(error, 2) + " (tolerance " + format(tolerance, 1) +
-                  "): " + (pass ? "PASS" : "FAIL"),
-                pass};
+        return checked(what,
+                       error,
+                       tolerance,
+                       error <= tolerance,
+                       what + " = " + format(value, 4) + " (reference " +
+                         format(reference, 4) + ") " + error_kind + " " +
+                         format(error, 2) + " (tolerance " +
+                         format(tolerance, 1),
+                       value,
+                       reference);
       }
 
       // Components below 1e-10 of @p scale are round-off (sums of forces
@@ -182,126 +220,191 @@ namespace Signorini
       const Records records =
         needs_points ? contact.gather_points() : Records();
       const auto summary = contact.summary();
-
       if (ref.max_pressure > 0)
-      {
-        double p0 = 0;
-        for (const auto &r : records)
-          p0 = std::max(p0, r.p);
-        results.push_back(
-          compared("max contact pressure p0",
-                   p0,
-                   ref.max_pressure,
-                   std::abs(p0 - ref.max_pressure) / ref.max_pressure,
-                   ref.pressure_tolerance,
-                   "relative error"));
-      }
+        results.push_back(check_max_pressure(records));
       if (ref.half_width > 0)
-      {
-        const double a =
-          zone_half_width<dim>(records, reference_centre<dim>(ref), false);
-        results.push_back(compared("contact half-width a",
-                                   a,
-                                   ref.half_width,
-                                   std::abs(a - ref.half_width),
-                                   ref.half_width_tolerance,
-                                   "absolute error"));
-      }
+        results.push_back(check_half_width(records));
       if (ref.cattaneo_mindlin)
         check_stick_zone(records, contact, results);
       if (exact_pressure)
-      {
-        exact_pressure->set_time(time);
-        double e2 = 0, n2 = 0;
-        for (const auto &r : records)
+        results.push_back(check_pressure_profile(records, time));
+      if (ref.friction_ratio > 0 && time >= ref.friction_ratio_from)
+        results.push_back(check_friction_ratio(summary[0]));
+      if (ref.force_variation_tolerance > 0 && time >= ref.friction_ratio_from)
+        {
+          steady_forces.push_back(summary[0].force);
+          if (is_last_step(time))
+            results.push_back(check_force_variation());
+        }
+      if (ref.gap_tolerance > 0)
+        results.push_back(check_gaps(records, time));
+      if (exact_force && time >= ref.contact_force_from)
+        results.push_back(check_contact_force(summary[0], time));
+      if (ref.action_reaction_tolerance > 0 || ref.slip_law_tolerance > 0)
+        check_laws(contact, state, force_level, results);
+      for (const auto &pv : ref.point_values)
+        results.push_back(check_point_value(pv, displacement_at));
+      return results;
+    }
+
+
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_max_pressure(const Records &records) const
+    {
+      const auto &ref = parameters.reference;
+      double      p0  = 0;
+      for (const auto &r : records)
+        p0 = std::max(p0, r.p);
+      return compared("max contact pressure p0",
+                      p0,
+                      ref.max_pressure,
+                      std::abs(p0 - ref.max_pressure) / ref.max_pressure,
+                      ref.pressure_tolerance,
+                      "relative error");
+    }
+
+
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_half_width(const Records &records) const
+    {
+      const auto  &ref = parameters.reference;
+      const double a =
+        zone_half_width<dim>(records, reference_centre<dim>(ref), false);
+      return compared("contact half-width a",
+                      a,
+                      ref.half_width,
+                      std::abs(a - ref.half_width),
+                      ref.half_width_tolerance,
+                      "absolute error");
+    }
+
+
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_pressure_profile(const Records &records,
+                                               const double   time) const
+    {
+      const auto &ref = parameters.reference;
+      exact_pressure->set_time(time);
+      double e2 = 0, n2 = 0;
+      for (const auto &r : records)
         {
           const double pe = exact_pressure->value(r.x);
           e2 += r.weight * std::pow(r.p - pe, 2);
           n2 += r.weight * pe * pe;
         }
-        const double e    = n2 > 0 ? std::sqrt(e2 / n2) : std::sqrt(e2);
-        const bool   pass = e <= ref.pressure_l2_tolerance;
-        results.push_back(
-          {"contact pressure relative L2 error = " + format(e, 2) +
-             " (tolerance " + format(ref.pressure_l2_tolerance, 1) +
-             "): " + (pass ? "PASS" : "FAIL"),
-           pass});
-      }
-      if (ref.friction_ratio > 0 && time >= ref.friction_ratio_from)
-      {
-        const Tensor<1, dim> n   = reference_normal<dim>(ref);
-        const Tensor<1, dim> F   = summary[0].force;
-        const double         F_n = F * n;
-        double               ratio =
-          std::abs(F_n) > 0 ? (F - F_n * n).norm() / std::abs(F_n) : 0.;
-        if (ref.friction_ratio_contact_frame)
-          ratio = summary[0].normal_force_local > 0 ?
-                    summary[0].tangential_force_local /
-                      summary[0].normal_force_local :
-                    0.;
-        results.push_back(
-          compared(ref.friction_ratio_contact_frame ?
-                     "friction force ratio sum|f_t|/sum|f_n| (contact frames)" :
-                     "friction force ratio |F_t|/|F_n|",
-                   ratio,
-                   ref.friction_ratio,
-                   std::abs(ratio - ref.friction_ratio) / ref.friction_ratio,
-                   ref.friction_ratio_tolerance,
-                   "relative error"));
-      }
-      if (ref.force_variation_tolerance > 0 && time >= ref.friction_ratio_from)
-      {
-        steady_forces.push_back(summary[0].force);
-        if (is_last_step(time))
+      const double e    = n2 > 0 ? std::sqrt(e2 / n2) : std::sqrt(e2);
+      const char  *what = "contact pressure relative L2 error";
+      return checked(what,
+                     e,
+                     ref.pressure_l2_tolerance,
+                     e <= ref.pressure_l2_tolerance,
+                     std::string(what) + " = " + format(e, 2) + " (tolerance " +
+                       format(ref.pressure_l2_tolerance, 1));
+    }
+
+
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_friction_ratio(const PairSummary &pair) const
+    {
+      const auto          &ref = parameters.reference;
+      const Tensor<1, dim> n   = reference_normal<dim>(ref);
+      const Tensor<1, dim> F   = pair.force;
+      const double         F_n = F * n;
+      double               ratio =
+        std::abs(F_n) > 0 ? (F - F_n * n).norm() / std::abs(F_n) : 0.;
+      if (ref.friction_ratio_contact_frame)
+        ratio = pair.normal_force_local > 0 ?
+                  pair.tangential_force_local / pair.normal_force_local :
+                  0.;
+      return compared(
+        ref.friction_ratio_contact_frame ?
+          "friction force ratio sum|f_t|/sum|f_n| (contact frames)" :
+          "friction force ratio |F_t|/|F_n|",
+        ratio,
+        ref.friction_ratio,
+        std::abs(ratio - ref.friction_ratio) / ref.friction_ratio,
+        ref.friction_ratio_tolerance,
+        "relative error");
+    }
+
+
+    // Steady sliding: the largest step-to-step change of the contact force
+    // of pair 1 over the steady steps, against their mean.
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_force_variation() const
+    {
+      const auto &ref  = parameters.reference;
+      double      mean = 0, jump = 0;
+      for (unsigned int k = 0; k < steady_forces.size(); ++k)
         {
-          double mean = 0, jump = 0;
-          for (unsigned int k = 0; k < steady_forces.size(); ++k)
-          {
-            mean += steady_forces[k].norm() / steady_forces.size();
-            if (k > 0)
-              jump = std::max(jump,
-                              (steady_forces[k] - steady_forces[k - 1]).norm());
-          }
-          const double e = mean > 0 ? jump / mean : 0.;
-          const bool   pass =
-            e <= ref.force_variation_tolerance && steady_forces.size() > 1;
-          results.push_back(
-            {"largest step-to-step change of the contact force over " +
-               std::to_string(steady_forces.size()) +
-               " steps = " + format(e, 2) + " of its mean (tolerance " +
-               format(ref.force_variation_tolerance, 1) +
-               "): " + (pass ? "PASS" : "FAIL"),
-             pass});
+          mean += steady_forces[k].norm() / steady_forces.size();
+          if (k > 0)
+            jump =
+              std::max(jump, (steady_forces[k] - steady_forces[k - 1]).norm());
         }
-      }
-      if (ref.gap_tolerance > 0)
-      {
-        double       closed_gap = 0, penetration = 0;
-        unsigned int n_closed = 0;
-        for (const auto &r : records)
-          if (r.status != Contact::PointStatus::free)
+      const double e = mean > 0 ? jump / mean : 0.;
+      const bool   pass =
+        e <= ref.force_variation_tolerance && steady_forces.size() > 1;
+      return checked("largest step-to-step change of the contact force",
+                     e,
+                     ref.force_variation_tolerance,
+                     pass,
+                     "largest step-to-step change of the contact force over " +
+                       std::to_string(steady_forces.size()) +
+                       " steps = " + format(e, 2) + " of its mean (tolerance " +
+                       format(ref.force_variation_tolerance, 1));
+    }
+
+
+    // The gap of closed points and the penetration of open ones. Before
+    // the gap has closed only penetration is checked; at the last step the
+    // gap must have closed.
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_gaps(const Records &records,
+                                   const double   time) const
+    {
+      const auto  &ref        = parameters.reference;
+      double       closed_gap = 0, penetration = 0;
+      unsigned int n_closed = 0;
+      for (const auto &r : records)
+        if (r.status != Contact::PointStatus::free)
           {
             ++n_closed;
             closed_gap = std::max(closed_gap, std::abs(r.gap));
           }
-          else if (r.paired)
-            penetration = std::max(penetration, r.gap);
-        // Before the gap has closed only penetration is checked; at the
-        // last step the gap must have closed.
-        const bool pass =
-          (n_closed > 0 || !is_last_step(time)) &&
-          std::max(closed_gap, penetration) <= ref.gap_tolerance;
-        results.push_back(
-          {"gap: " + std::to_string(n_closed) +
-             " closed points, largest |g| there = " + format(closed_gap, 2) +
-             " m, largest penetration of an open point = " +
-             format(penetration, 2) + " m (tolerance " +
-             format(ref.gap_tolerance, 1) + "): " + (pass ? "PASS" : "FAIL"),
-           pass});
-      }
-      // The compared components ('*' for the others).
-      const auto compared_text = [this](const Tensor<1, dim> &v)
-      {
+        else if (r.paired)
+          penetration = std::max(penetration, r.gap);
+      const double error = std::max(closed_gap, penetration);
+      const bool   pass =
+        (n_closed > 0 || !is_last_step(time)) && error <= ref.gap_tolerance;
+      return checked("gap",
+                     error,
+                     ref.gap_tolerance,
+                     pass,
+                     "gap: " + std::to_string(n_closed) +
+                       " closed points, largest |g| there = " +
+                       format(closed_gap, 2) +
+                       " m, largest penetration of an open point = " +
+                       format(penetration, 2) + " m (tolerance " +
+                       format(ref.gap_tolerance, 1));
+    }
+
+
+    // The total contact force of pair 1 on its master against 'Contact
+    // force' (the compared components; '*' for the others).
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_contact_force(const PairSummary &pair,
+                                            const double       time) const
+    {
+      const auto &ref           = parameters.reference;
+      const auto  compared_text = [this](const Tensor<1, dim> &v) {
         std::string text = "(";
         for (unsigned int d = 0; d < dim; ++d)
           text += (d ? ", " : "") +
@@ -310,52 +413,56 @@ namespace Signorini
                      std::string("*"));
         return text + ")";
       };
-      if (exact_force && time >= ref.contact_force_from)
-      {
-        exact_force->set_time(time);
-        Vector<double> values(dim);
-        exact_force->vector_value(Point<dim>(), values);
-        Tensor<1, dim> F_ref, F;
-        for (unsigned int d = 0; d < dim; ++d)
-          if (force_compared[d])
+      exact_force->set_time(time);
+      Vector<double> values(dim);
+      exact_force->vector_value(Point<dim>(), values);
+      Tensor<1, dim> F_ref, F;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (force_compared[d])
           {
             F_ref[d] = values[d];
-            F[d]     = summary[0].force[d];
+            F[d]     = pair.force[d];
           }
-        const double error =
-          F_ref.norm() > 0 ? (F - F_ref).norm() / F_ref.norm() : F.norm();
-        const bool pass = error <= ref.contact_force_tolerance;
-        results.push_back(
-          {"contact force on the master of pair 1 = " + compared_text(F) +
-             " (reference " + compared_text(F_ref) + ") relative error " +
-             format(error, 2) + " (tolerance " +
-             format(ref.contact_force_tolerance, 1) +
-             "): " + (pass ? "PASS" : "FAIL"),
-           pass});
-      }
-      if (ref.action_reaction_tolerance > 0 || ref.slip_law_tolerance > 0)
-        check_laws(contact, state, force_level, results);
+      const double error =
+        F_ref.norm() > 0 ? (F - F_ref).norm() / F_ref.norm() : F.norm();
+      return checked("contact force on the master of pair 1",
+                     error,
+                     ref.contact_force_tolerance,
+                     error <= ref.contact_force_tolerance,
+                     "contact force on the master of pair 1 = " +
+                       compared_text(F) + " (reference " +
+                       compared_text(F_ref) + ") relative error " +
+                       format(error, 2) + " (tolerance " +
+                       format(ref.contact_force_tolerance, 1),
+                     F.norm(),
+                     F_ref.norm());
+    }
+
+
+    template <int dim>
+    CheckResult
+    ContactChecks<dim>::check_point_value(
+      const ReferenceParameters::PointValue &pv,
+      const std::function<double(const Point<dim> &, const unsigned int)>
+        &displacement_at) const
+    {
       const char *axis[] = {"x", "y", "z"};
-      for (const auto &pv : ref.point_values)
-      {
-        Point<dim> p;
-        for (unsigned int d = 0; d < dim && d < pv.point.size(); ++d)
-          p[d] = pv.point[d];
-        const double       value = displacement_at(p, pv.component);
-        std::ostringstream what;
-        what << "u_" << axis[pv.component] << "(";
-        for (unsigned int d = 0; d < dim; ++d)
-          what << (d ? ", " : "") << p[d];
-        what << ")";
-        results.push_back(compared(what.str(),
-                                   value,
-                                   pv.value,
-                                   std::abs(value - pv.value) /
-                                     std::max(std::abs(pv.value), 1e-300),
-                                   pv.tolerance,
-                                   "relative error"));
-      }
-      return results;
+      Point<dim>  p;
+      for (unsigned int d = 0; d < dim && d < pv.point.size(); ++d)
+        p[d] = pv.point[d];
+      const double       value = displacement_at(p, pv.component);
+      std::ostringstream what;
+      what << "u_" << axis[pv.component] << "(";
+      for (unsigned int d = 0; d < dim; ++d)
+        what << (d ? ", " : "") << p[d];
+      what << ")";
+      return compared(what.str(),
+                      value,
+                      pv.value,
+                      std::abs(value - pv.value) /
+                        std::max(std::abs(pv.value), 1e-300),
+                      pv.tolerance,
+                      "relative error");
     }
 
 
@@ -384,16 +491,18 @@ namespace Signorini
           const double e =
             scale > 0 ? (c.force_rows - c.force_multipliers).norm() / scale :
                         0.;
-          const bool pass = e <= ref.action_reaction_tolerance;
           results.push_back(
-            {"action = reaction, " + pair +
-               ": force on the master from the displacement rows " +
-               vector_text(c.force_rows, scale) + ", from the multipliers " +
-               vector_text(c.force_multipliers, scale) +
-               ", relative difference " + format(e, 2) + " (tolerance " +
-               format(ref.action_reaction_tolerance, 1) +
-               "): " + (pass ? "PASS" : "FAIL"),
-             pass});
+            checked("action = reaction, " + pair,
+                    e,
+                    ref.action_reaction_tolerance,
+                    e <= ref.action_reaction_tolerance,
+                    "action = reaction, " + pair +
+                      ": force on the master from the displacement rows " +
+                      vector_text(c.force_rows, scale) +
+                      ", from the multipliers " +
+                      vector_text(c.force_multipliers, scale) +
+                      ", relative difference " + format(e, 2) + " (tolerance " +
+                      format(ref.action_reaction_tolerance, 1)));
         }
         if (ref.slip_law_tolerance == 0 ||
             parameters.contact.pairs[p].friction == 0)
@@ -401,9 +510,9 @@ namespace Signorini
         const char *where = c.by_node ? "node" : "point";
         if (c.n_slipping == 0)
         {
-          results.push_back({"slip law, " + pair + ": no " + where +
-                               " slips at this step (not checked)",
-                             true});
+          results.push_back(not_checked("slip law, " + pair,
+                                        "slip law, " + pair + ": no " + where +
+                                          " slips at this step (not checked)"));
           continue;
         }
         const bool pass = c.n_opposed == c.n_slipping &&
@@ -414,9 +523,12 @@ namespace Signorini
              << "s (smallest cosine " << std::fixed << std::setprecision(4)
              << c.min_cosine << "), |f_t| = mu |f_n| to "
              << format(c.max_deviation, 2) << " (tolerance "
-             << format(ref.slip_law_tolerance, 1)
-             << "): " << (pass ? "PASS" : "FAIL");
-        results.push_back({text.str(), pass});
+             << format(ref.slip_law_tolerance, 1);
+        results.push_back(checked("slip law, " + pair,
+                                  c.max_deviation,
+                                  ref.slip_law_tolerance,
+                                  pass,
+                                  text.str()));
       }
     }
 
@@ -442,10 +554,10 @@ namespace Signorini
       const Tensor<1, dim> F_t = F - (F * n) * n;
       if (mu == 0 || P == 0)
       {
-        results.push_back(
-          {std::string("stick zone: not checked (") +
-             (mu == 0 ? "pair 1 is frictionless" : "no normal force") + ")",
-           true});
+        results.push_back(not_checked(
+          "stick zone",
+          std::string("stick zone: not checked (") +
+            (mu == 0 ? "pair 1 is frictionless" : "no normal force") + ")"));
         return;
       }
       // A tangential force below 1e-4 mu P is no tangential load: it moves
@@ -482,7 +594,8 @@ namespace Signorini
       if (mindlin_direction == 0)
       {
         results.push_back(
-          {"stick zone: no tangential force yet (not checked)", true});
+          not_checked("stick zone",
+                      "stick zone: no tangential force yet (not checked)"));
         return;
       }
       const double     load   = mindlin_turned ?
@@ -521,9 +634,14 @@ namespace Signorini
       if (slip_missing)
         what << ", no slipping point where theory has a slip annulus of "
              << format(a - c_ref, 2);
-      what << " (tolerance " << format(ref.half_width_tolerance, 1)
-           << "): " << (pass ? "PASS" : "FAIL");
-      results.push_back({what.str(), pass});
+      what << " (tolerance " << format(ref.half_width_tolerance, 1);
+      results.push_back(checked("stick zone half-width c",
+                                error,
+                                ref.half_width_tolerance,
+                                pass,
+                                what.str(),
+                                c,
+                                c_ref));
     }
 
 

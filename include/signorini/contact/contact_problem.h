@@ -596,6 +596,35 @@ namespace Signorini
        * @p x_master (rigid obstacle, pinned face, the mortar piece's face,
        * else the search), records its pairing history and sets its normal
        * and tangents; true if a pairing 2-cycle pinned it now. */
+      /** Release extrapolation (extrapolate_releases()): the status
+       * carriers of every pair, and one pair's releases. */
+      struct ReleaseCarrier;
+      std::vector<std::vector<ReleaseCarrier>>
+      release_carriers();
+      unsigned int
+      release_mirrored(const std::vector<ReleaseCarrier> &carriers);
+      /** The force on the master at @p point from the multipliers
+       * (law_checks()). */
+      Tensor<1, dim>
+      multiplier_force(const ContactPoint                  &point,
+                       const TrilinosWrappers::MPI::Vector &state) const;
+      /** The largest slip and friction force of each pair: the scale below
+       * which a slip direction is round-off (law_checks()). */
+      struct SlipScales
+      {
+        std::vector<double> v_max, f_max;
+        bool
+        measurable(const unsigned int    p,
+                   const Tensor<1, dim> &f,
+                   const Tensor<1, dim> &v) const
+        {
+          return v.norm() > 1e-9 * v_max[p] && f.norm() > 1e-9 * f_max[p];
+        }
+      };
+      void
+      add_node_slip_samples(std::vector<TrilinosWrappers::MPI::Vector> &nodal,
+                            const SlipScales                           &scales,
+                            std::vector<LawCheck> &result) const;
       bool
       pair_point(ContactPoint                                           &point,
                  const TrilinosWrappers::MPI::Vector                    &state,

@@ -363,6 +363,9 @@ namespace Signorini
 
     /** Checks across subsections that patterns cannot express. */
     void check_consistency() const;
+    /** The contact part of check_consistency(). */
+    void
+    check_contact() const;
   };
 
   /**

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,11 +37,19 @@ namespace Signorini
   {
     using namespace dealii;
 
-    /** One reference check: what was compared, and whether it passed. */
+    /** One reference check: what was compared, the numbers, the verdict,
+     * and the line printed after "reference check: ". */
     struct CheckResult
     {
-      std::string text; // the line printed after "reference check: "
-      bool        pass = true;
+      static constexpr double none = std::numeric_limits<double>::quiet_NaN();
+      std::string             what;             // the quantity checked
+      double                  value     = none; // where one number is compared
+      double                  reference = none; // with its reference
+      double                  error = none; // the measure against the tolerance
+      double                  tolerance = none;
+      bool        checked = true; // false: does not apply at this step
+      bool        pass    = true;
+      std::string text;
     };
 
     template <int dim>
@@ -71,6 +80,28 @@ namespace Signorini
     private:
       using Records =
         std::vector<typename Contact::ContactProblem<dim>::PointRecord>;
+      using PairSummary = typename Contact::ContactProblem<dim>::PairSummary;
+
+      // One function per check (see the class documentation).
+      CheckResult
+      check_max_pressure(const Records &records) const;
+      CheckResult
+      check_half_width(const Records &records) const;
+      CheckResult
+      check_pressure_profile(const Records &records, const double time) const;
+      CheckResult
+      check_friction_ratio(const PairSummary &pair) const;
+      CheckResult
+      check_force_variation() const;
+      CheckResult
+      check_gaps(const Records &records, const double time) const;
+      CheckResult
+      check_contact_force(const PairSummary &pair, const double time) const;
+      CheckResult
+      check_point_value(
+        const ReferenceParameters::PointValue &pv,
+        const std::function<double(const Point<dim> &, const unsigned int)>
+          &displacement_at) const;
 
       void
       check_stick_zone(const Records                      &records,
