@@ -299,185 +299,212 @@ namespace Signorini
 
 
   // ------------------------------------------------------------- Reference
+  namespace
+  {
+    // Exact displacement and stress, the contact pressure and zone.
+    void
+    declare_field_references(ParameterHandler &prm)
+    {
+      prm.declare_entry("Displacement",
+                        "",
+                        Patterns::Anything(),
+                        "Exact displacement [m] for verification: Dimension "
+                        "expressions separated by ';' in x, y, z, t. Empty: "
+                        "none. The run prints the relative L2 error.");
+      prm.declare_entry("Stress",
+                        "",
+                        Patterns::Anything(),
+                        "Exact Cauchy stress [Pa]: Dimension^2 expressions, "
+                        "row by row, separated by ';'. Empty: none. The run "
+                        "prints the largest relative error at quadrature "
+                        "points.");
+      prm.declare_entry("Tolerance",
+                        "1e-10",
+                        Patterns::Double(0),
+                        "Relative error below which the comparison is "
+                        "reported as PASS.");
+      prm.declare_entry("Maximum contact pressure",
+                        "0",
+                        Patterns::Double(0),
+                        "Reference for the largest contact pressure p0 = "
+                        "max(-lambda) at the contact points [Pa]; 0: not "
+                        "checked.");
+      prm.declare_entry("Pressure tolerance",
+                        "0.02",
+                        Patterns::Double(0),
+                        "Relative tolerance of the p0 check.");
+      prm.declare_entry("Contact half-width",
+                        "0",
+                        Patterns::Double(0),
+                        "Reference contact half-width a (or radius in 3D) [m], "
+                        "measured from 'Contact centre'; 0: not checked. The "
+                        "computed a is midway between the farthest closed "
+                        "point and the nearest open point beyond it.");
+      prm.declare_entry("Contact centre",
+                        "0, 0, 0",
+                        point_pattern(),
+                        "Centre of the contact zone for the half-width [m].");
+      prm.declare_entry("Half-width tolerance",
+                        "0",
+                        Patterns::Double(0),
+                        "Absolute tolerance of the half-width check [m] "
+                        "(typically one slave element).");
+      prm.declare_entry("Contact pressure",
+                        "",
+                        Patterns::Anything(),
+                        "Exact contact pressure p(x, y, z) [Pa] on the slave "
+                        "surface; empty: not checked. The run prints the "
+                        "relative L2 error over the contact points.");
+      prm.declare_entry("Pressure L2 tolerance",
+                        "0.05",
+                        Patterns::Double(0),
+                        "Tolerance of the relative L2 pressure error.");
+    }
+
+
+    // Friction: force ratio in sliding, force variation, stick zone; displacement values at points.
+    void
+    declare_friction_references(ParameterHandler &prm)
+    {
+      prm.declare_entry("Friction force ratio",
+                        "0",
+                        Patterns::Double(0),
+                        "Reference for |F_t| / |F_n| of the contact force on "
+                        "the slave of pair 1, F_n its component along 'Friction "
+                        "ratio normal' and F_t the rest (= mu in full sliding); "
+                        "0: not checked.");
+      prm.declare_entry("Friction ratio normal",
+                        "0, 1, 0",
+                        point_pattern(),
+                        "Direction of the normal force for 'Friction force "
+                        "ratio' (normalised).");
+      prm.declare_entry("Friction ratio frame",
+                        "global",
+                        Patterns::Selection("global|contact"),
+                        "global: F_n and F_t are the parts of the total contact "
+                        "force along 'Friction ratio normal' and across it "
+                        "(a flat master). contact: F_n = sum of w |f . n| and "
+                        "F_t = sum of w |P f| over the contact points, each in "
+                        "its own contact frame (a curved master, e.g. an "
+                        "ironing die, whose total force also carries the "
+                        "tilted normal pressures).");
+      prm.declare_entry("Force variation tolerance",
+                        "0",
+                        Patterns::Double(0),
+                        "If > 0: at the last step, the largest change of the "
+                        "total contact force of pair 1 between consecutive "
+                        "steps with t >= 'Friction ratio from time', relative "
+                        "to its mean magnitude over these steps, is checked "
+                        "against this value (no spikes from status "
+                        "chattering).");
+      prm.declare_entry(
+        "Stick zone",
+        "none",
+        Patterns::Selection("none|cattaneo-mindlin"),
+        "cattaneo-mindlin: at every step with a tangential force, the half-width "
+        "c of the stick zone of pair 1 (around 'Contact centre') is checked "
+        "against Cattaneo-Mindlin partial slip under a constant normal force P, "
+        "c = a (1 - |Q|/(mu P))^(1/m) while Q grows from 0 (first loading) and "
+        "c = a (1 - |Q - Q*|/(2 mu P))^(1/m) after the tangential force Q "
+        "turned at Q* (Masing), m = 2 in 2D (cylinder) and 3 in 3D (sphere); a "
+        "is the measured contact half-width, P and Q the contact force of pair "
+        "1 along 'Friction ratio normal' and across it, tolerance 'Half-width "
+        "tolerance'. 2D: a and c midway between the farthest point inside "
+        "(closed; stick) and the nearest point outside beyond it. 3D: "
+        "area-equivalent radii, a = sqrt(A_closed / pi) and c = "
+        "sqrt(A_stick / pi) with A the summed weights of the closed and of the "
+        "stick points. Valid for elastically similar bodies (no coupling of the "
+        "normal and tangential problems).");
+      prm.declare_entry("Friction ratio from time",
+                        "0",
+                        Patterns::Double(0),
+                        "The friction force ratio is checked at the steps "
+                        "with t >= this time (steady sliding).");
+      prm.declare_entry("Friction ratio tolerance",
+                        "0.01",
+                        Patterns::Double(0),
+                        "Relative tolerance of the friction force ratio check.");
+      prm.declare_entry("Point values",
+                        "",
+                        Patterns::Anything(),
+                        "Displacement values to check, separated by ';', each "
+                        "'x, y[, z] : component : value[ : tolerance]' with "
+                        "component x, y or z and an optional relative "
+                        "tolerance of its own (else 'Point value tolerance'), "
+                        "e.g. '0.00125, 0 : x : 2.72e-5 : 0.01'.");
+      prm.declare_entry("Point value tolerance",
+                        "0.05",
+                        Patterns::Double(0),
+                        "Relative tolerance of the point value checks.");
+    }
+
+
+    // Facts of every converged state (action = reaction, slip law, gaps) and the total contact force.
+    void
+    declare_law_references(ParameterHandler &prm)
+    {
+      prm.declare_entry("Action-reaction tolerance",
+                        "0",
+                        Patterns::Double(0),
+                        "Check after each step, for every contact pair, that "
+                        "the force the displacement rows carry (what the "
+                        "master receives) equals the force the multipliers "
+                        "stand for, recomputed from them alone (the traction "
+                        "lambda n + mu lambda T Lambda): their difference over "
+                        "the larger must be below this value. The two differ "
+                        "by the augmentation terms, which vanish at a "
+                        "converged state, and by any error of the contact law "
+                        "in the rows. 0: not checked.");
+      prm.declare_entry("Slip law tolerance",
+                        "0",
+                        Patterns::Double(0),
+                        "Check after each step, for every pair with friction, "
+                        "Coulomb's law where the contact slips: at every "
+                        "slipping contact point (statuses per point) or "
+                        "slipping multiplier node (statuses per node: its "
+                        "force against its weighted slip) the friction force "
+                        "on the slave opposes the slip increment, and "
+                        "|f_t| = mu |f_n| within this relative tolerance. A "
+                        "step without slipping point says so. 0: not "
+                        "checked.");
+      prm.declare_entry("Contact force",
+                        "",
+                        Patterns::Anything(),
+                        "Reference for the total contact force on the master "
+                        "of pair 1 [N; N/m in 2D; axisymmetric: over the "
+                        "circumference], Dimension expressions of t separated "
+                        "by ';' (e.g. the applied load where the scene fixes "
+                        "it); a component written '*' is left out (e.g. the "
+                        "horizontal force of a half model). Empty: not "
+                        "checked.");
+      prm.declare_entry("Contact force from time",
+                        "0",
+                        Patterns::Double(),
+                        "The 'Contact force' check runs at the steps with t >= "
+                        "this time (e.g. the steady phase of a load path).");
+      prm.declare_entry("Contact force tolerance",
+                        "1e-3",
+                        Patterns::Double(0),
+                        "Relative tolerance of the 'Contact force' check: "
+                        "|F - F_ref| / |F_ref|.");
+      prm.declare_entry("Gap tolerance",
+                        "0",
+                        Patterns::Double(0),
+                        "Check after each step that every closed contact point "
+                        "has |gap| below this value [m] and no open point "
+                        "penetrates by more; at least one point must be "
+                        "closed. 0: not checked.");
+    }
+  } // namespace
+
+
   void
   ReferenceParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Reference solution");
-    prm.declare_entry("Displacement",
-                      "",
-                      Patterns::Anything(),
-                      "Exact displacement [m] for verification: Dimension "
-                      "expressions separated by ';' in x, y, z, t. Empty: "
-                      "none. The run prints the relative L2 error.");
-    prm.declare_entry("Stress",
-                      "",
-                      Patterns::Anything(),
-                      "Exact Cauchy stress [Pa]: Dimension^2 expressions, "
-                      "row by row, separated by ';'. Empty: none. The run "
-                      "prints the largest relative error at quadrature "
-                      "points.");
-    prm.declare_entry("Tolerance",
-                      "1e-10",
-                      Patterns::Double(0),
-                      "Relative error below which the comparison is "
-                      "reported as PASS.");
-    prm.declare_entry("Maximum contact pressure",
-                      "0",
-                      Patterns::Double(0),
-                      "Reference for the largest contact pressure p0 = "
-                      "max(-lambda) at the contact points [Pa]; 0: not "
-                      "checked.");
-    prm.declare_entry("Pressure tolerance",
-                      "0.02",
-                      Patterns::Double(0),
-                      "Relative tolerance of the p0 check.");
-    prm.declare_entry("Contact half-width",
-                      "0",
-                      Patterns::Double(0),
-                      "Reference contact half-width a (or radius in 3D) [m], "
-                      "measured from 'Contact centre'; 0: not checked. The "
-                      "computed a is midway between the farthest closed "
-                      "point and the nearest open point beyond it.");
-    prm.declare_entry("Contact centre",
-                      "0, 0, 0",
-                      point_pattern(),
-                      "Centre of the contact zone for the half-width [m].");
-    prm.declare_entry("Half-width tolerance",
-                      "0",
-                      Patterns::Double(0),
-                      "Absolute tolerance of the half-width check [m] "
-                      "(typically one slave element).");
-    prm.declare_entry("Contact pressure",
-                      "",
-                      Patterns::Anything(),
-                      "Exact contact pressure p(x, y, z) [Pa] on the slave "
-                      "surface; empty: not checked. The run prints the "
-                      "relative L2 error over the contact points.");
-    prm.declare_entry("Pressure L2 tolerance",
-                      "0.05",
-                      Patterns::Double(0),
-                      "Tolerance of the relative L2 pressure error.");
-    prm.declare_entry("Friction force ratio",
-                      "0",
-                      Patterns::Double(0),
-                      "Reference for |F_t| / |F_n| of the contact force on "
-                      "the slave of pair 1, F_n its component along 'Friction "
-                      "ratio normal' and F_t the rest (= mu in full sliding); "
-                      "0: not checked.");
-    prm.declare_entry("Friction ratio normal",
-                      "0, 1, 0",
-                      point_pattern(),
-                      "Direction of the normal force for 'Friction force "
-                      "ratio' (normalised).");
-    prm.declare_entry("Friction ratio frame",
-                      "global",
-                      Patterns::Selection("global|contact"),
-                      "global: F_n and F_t are the parts of the total contact "
-                      "force along 'Friction ratio normal' and across it "
-                      "(a flat master). contact: F_n = sum of w |f . n| and "
-                      "F_t = sum of w |P f| over the contact points, each in "
-                      "its own contact frame (a curved master, e.g. an "
-                      "ironing die, whose total force also carries the "
-                      "tilted normal pressures).");
-    prm.declare_entry("Force variation tolerance",
-                      "0",
-                      Patterns::Double(0),
-                      "If > 0: at the last step, the largest change of the "
-                      "total contact force of pair 1 between consecutive "
-                      "steps with t >= 'Friction ratio from time', relative "
-                      "to its mean magnitude over these steps, is checked "
-                      "against this value (no spikes from status "
-                      "chattering).");
-    prm.declare_entry(
-      "Stick zone",
-      "none",
-      Patterns::Selection("none|cattaneo-mindlin"),
-      "cattaneo-mindlin: at every step with a tangential force, the half-width "
-      "c of the stick zone of pair 1 (around 'Contact centre') is checked "
-      "against Cattaneo-Mindlin partial slip under a constant normal force P, "
-      "c = a (1 - |Q|/(mu P))^(1/m) while Q grows from 0 (first loading) and "
-      "c = a (1 - |Q - Q*|/(2 mu P))^(1/m) after the tangential force Q "
-      "turned at Q* (Masing), m = 2 in 2D (cylinder) and 3 in 3D (sphere); a "
-      "is the measured contact half-width, P and Q the contact force of pair "
-      "1 along 'Friction ratio normal' and across it, tolerance 'Half-width "
-      "tolerance'. 2D: a and c midway between the farthest point inside "
-      "(closed; stick) and the nearest point outside beyond it. 3D: "
-      "area-equivalent radii, a = sqrt(A_closed / pi) and c = "
-      "sqrt(A_stick / pi) with A the summed weights of the closed and of the "
-      "stick points. Valid for elastically similar bodies (no coupling of the "
-      "normal and tangential problems).");
-    prm.declare_entry("Friction ratio from time",
-                      "0",
-                      Patterns::Double(0),
-                      "The friction force ratio is checked at the steps "
-                      "with t >= this time (steady sliding).");
-    prm.declare_entry("Friction ratio tolerance",
-                      "0.01",
-                      Patterns::Double(0),
-                      "Relative tolerance of the friction force ratio check.");
-    prm.declare_entry("Point values",
-                      "",
-                      Patterns::Anything(),
-                      "Displacement values to check, separated by ';', each "
-                      "'x, y[, z] : component : value[ : tolerance]' with "
-                      "component x, y or z and an optional relative "
-                      "tolerance of its own (else 'Point value tolerance'), "
-                      "e.g. '0.00125, 0 : x : 2.72e-5 : 0.01'.");
-    prm.declare_entry("Point value tolerance",
-                      "0.05",
-                      Patterns::Double(0),
-                      "Relative tolerance of the point value checks.");
-    prm.declare_entry("Action-reaction tolerance",
-                      "0",
-                      Patterns::Double(0),
-                      "Check after each step, for every contact pair, that "
-                      "the force the displacement rows carry (what the "
-                      "master receives) equals the force the multipliers "
-                      "stand for, recomputed from them alone (the traction "
-                      "lambda n + mu lambda T Lambda): their difference over "
-                      "the larger must be below this value. The two differ "
-                      "by the augmentation terms, which vanish at a "
-                      "converged state, and by any error of the contact law "
-                      "in the rows. 0: not checked.");
-    prm.declare_entry("Slip law tolerance",
-                      "0",
-                      Patterns::Double(0),
-                      "Check after each step, for every pair with friction, "
-                      "Coulomb's law where the contact slips: at every "
-                      "slipping contact point (statuses per point) or "
-                      "slipping multiplier node (statuses per node: its "
-                      "force against its weighted slip) the friction force "
-                      "on the slave opposes the slip increment, and "
-                      "|f_t| = mu |f_n| within this relative tolerance. A "
-                      "step without slipping point says so. 0: not "
-                      "checked.");
-    prm.declare_entry("Contact force",
-                      "",
-                      Patterns::Anything(),
-                      "Reference for the total contact force on the master "
-                      "of pair 1 [N; N/m in 2D; axisymmetric: over the "
-                      "circumference], Dimension expressions of t separated "
-                      "by ';' (e.g. the applied load where the scene fixes "
-                      "it); a component written '*' is left out (e.g. the "
-                      "horizontal force of a half model). Empty: not "
-                      "checked.");
-    prm.declare_entry("Contact force from time",
-                      "0",
-                      Patterns::Double(),
-                      "The 'Contact force' check runs at the steps with t >= "
-                      "this time (e.g. the steady phase of a load path).");
-    prm.declare_entry("Contact force tolerance",
-                      "1e-3",
-                      Patterns::Double(0),
-                      "Relative tolerance of the 'Contact force' check: "
-                      "|F - F_ref| / |F_ref|.");
-    prm.declare_entry("Gap tolerance",
-                      "0",
-                      Patterns::Double(0),
-                      "Check after each step that every closed contact point "
-                      "has |gap| below this value [m] and no open point "
-                      "penetrates by more; at least one point must be "
-                      "closed. 0: not checked.");
+    declare_field_references(prm);
+    declare_friction_references(prm);
+    declare_law_references(prm);
     prm.leave_subsection();
   }
 
