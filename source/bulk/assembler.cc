@@ -15,11 +15,13 @@ namespace Signorini
     template <int dim>
     Assembler<dim>::Assembler(
       const Parameters &                                       parameters,
+      const Mapping<dim> &                                     mapping,
       const FESystem<dim> &                                    fe,
       const Materials<dim> &                                   materials,
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
       const FunctionParser<dim> &                              body_force)
       : parameters(parameters)
+      , mapping(mapping)
       , fe(fe)
       , materials(materials)
       , neumann(neumann)
@@ -40,11 +42,13 @@ namespace Signorini
     {
       const QGauss<dim>     quadrature(fe.degree + 1);
       const QGauss<dim - 1> face_quadrature(fe.degree + 1);
-      FEValues<dim>         fe_values(fe,
+      FEValues<dim>         fe_values(mapping,
+                              fe,
                               quadrature,
                               update_values | update_gradients |
                                 update_quadrature_points | update_JxW_values);
-      FEFaceValues<dim>     fe_face_values(fe,
+      FEFaceValues<dim>     fe_face_values(mapping,
+                                       fe,
                                        face_quadrature,
                                        update_values |
                                          update_quadrature_points |

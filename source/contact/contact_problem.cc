@@ -34,12 +34,14 @@ namespace Signorini
     template <int dim>
     ContactProblem<dim>::ContactProblem(
       const Parameters                                         &parameters,
+      const Mapping<dim>                                       &mapping,
       const FESystem<dim>                                      &fe,
       const DoFHandler<dim>                                    &dof_handler,
       const Bulk::Materials<dim>                               &materials,
       std::vector<std::unique_ptr<Obstacles::Interface<dim>>> &&obstacles_in,
       const MPI_Comm                                            comm)
         : parameters(parameters)
+        , mapping(mapping)
         , dof_handler(dof_handler)
         , fe(fe)
         , materials(materials)

@@ -61,7 +61,6 @@ namespace Signorini
       std::vector<MasterLine> own_master_lines;
       // Outward normals at slave face centres; positions of support points.
       std::unique_ptr<FEFaceValues<dim>> centre_values;
-      MappingQ1<dim>                     mapping;
     };
 
 
@@ -101,7 +100,7 @@ namespace Signorini
       const unsigned int n_pairs = pairs.size();
       SurfaceScan        scan;
       scan.centre_values = std::make_unique<FEFaceValues<dim>>(
-        fe, QGauss<dim - 1>(1), update_normal_vectors);
+        mapping, fe, QGauss<dim - 1>(1), update_normal_vectors);
       for (unsigned int p = 0; p < n_pairs; ++p)
         {
           for (const auto id : pairs[p].slave_ids)
@@ -191,7 +190,7 @@ namespace Signorini
                                   cell->face_orientation(f),
                                   cell->face_flip(f),
                                   cell->face_rotation(f));
-          face.X[k] = scan.mapping.transform_unit_to_real_cell(
+          face.X[k] = mapping.transform_unit_to_real_cell(
             cell, fe.unit_support_point(cell_i));
           face.k_node[k] =
             std::find(face.node_local.begin(), face.node_local.end(), cell_i) -
@@ -259,7 +258,7 @@ namespace Signorini
                                                             cell->face_rotation(f));
           face.dofs[k * dim + c] = cell_dofs[cell_i];
           if (c == 0)
-            face.X[k] = scan.mapping.transform_unit_to_real_cell(
+            face.X[k] = mapping.transform_unit_to_real_cell(
               cell, fe.unit_support_point(cell_i));
         }
       for (const auto d : face.dofs)

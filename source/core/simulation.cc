@@ -69,6 +69,7 @@ namespace Signorini
     , triangulation(mpi_communicator,
                     Triangulation<dim>::limit_level_difference_at_vertices)
     , fe(FE_Q<dim>(parameters.fe_degree), dim)
+    , mapping(parameters.fe_degree)
     , dof_handler(triangulation)
     , linear_solver(
         std::make_unique<Solver::LinearSolver<dim>>(parameters.linear_solver))
@@ -95,9 +96,10 @@ namespace Signorini
     for (const auto &[id, material] : materials)
       materials_linear &= material->is_linear();
     bulk = std::make_unique<Bulk::Assembler<dim>>(
-      parameters, fe, materials, neumann_functions, *body_force);
+      parameters, mapping, fe, materials, neumann_functions, *body_force);
     contact = std::make_unique<Contact::ContactProblem<dim>>(
       parameters,
+      mapping,
       fe,
       dof_handler,
       materials,
@@ -258,8 +260,9 @@ namespace Signorini
                          true);
     if (!contact->active())
       make_sparsity();
-    linear_solver->set_null_space(dof_handler, locally_owned);
-    rigid_modes.setup(dof_handler,
+    linear_solver->set_null_space(mapping, dof_handler, locally_owned);
+    rigid_modes.setup(mapping,
+                      dof_handler,
                       constraints_update,
                       owned_system,
                       parameters.axisymmetric,
@@ -331,7 +334,6 @@ namespace Signorini
         // Nodes of this boundary (vertices only for 'At point'); every
         // support point gets the value of its component's expression.
         std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
-        const auto &unit_face_points = fe.get_unit_face_support_points();
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (!cell->is_artificial())
             for (const unsigned int fi : cell->face_indices())
@@ -352,19 +354,16 @@ namespace Signorini
                                   comp);
                       if (pos == d.components.end())
                         continue;
-                      // Support point in real space (bilinear map of the
-                      // face: exact for the straight faces of generated
-                      // meshes, nodes of curved faces lie on the manifold
-                      // after refinement only at vertices).
-                      Point<dim> x;
-                      const auto &up = unit_face_points[i];
-                      for (const unsigned int v : face->vertex_indices())
-                        {
-                          double shape = 1.;
-                          for (unsigned int c = 0; c < dim - 1; ++c)
-                            shape *= ((v >> c) & 1) ? up[c] : 1 - up[c];
-                          x += shape * face->vertex(v);
-                        }
+                      // Support point in real space, through the mapping
+                      // (on a curved boundary's manifold for Q2).
+                      const Point<dim> x = mapping.transform_unit_to_real_cell(
+                        cell,
+                        fe.unit_support_point(
+                          fe.face_to_cell_index(i,
+                                                fi,
+                                                cell->face_orientation(fi),
+                                                cell->face_flip(fi),
+                                                cell->face_rotation(fi))));
                       if (at_point && x.distance(point) > tolerance)
                         continue;
                       const types::global_dof_index dof = face_dofs[i];

@@ -71,7 +71,8 @@ namespace Signorini
     {
       TimerOutput::Scope t(timer, "adaptation");
       Vector<float>      indicator(triangulation.n_active_cells());
-      KellyErrorEstimator<dim>::estimate(dof_handler,
+      KellyErrorEstimator<dim>::estimate(mapping,
+                                         dof_handler,
                                          QGauss<dim - 1>(fe.degree + 1),
                                          {},
                                          solution,

@@ -118,7 +118,8 @@ namespace Signorini
     if (ref.displacement.empty() && ref.stress.empty())
       return;
     const QGauss<dim> quadrature(fe.degree + 2);
-    FEValues<dim>     fe_values(fe,
+    FEValues<dim>     fe_values(mapping,
+                            fe,
                             quadrature,
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
@@ -224,7 +225,6 @@ namespace Signorini
   Simulation<dim>::point_value(const Point<dim> &p,
                                const unsigned int component) const
   {
-    const MappingQ1<dim> mapping;
     double               value = 0;
     bool                 found = false;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -281,6 +281,7 @@ namespace Signorini
                              DataOut<dim>::type_dof_data,
                              interpretation);
     Postprocess::StressPostprocessor<dim> stress(
+      mapping,
       materials,
       parameters.axisymmetric,
       parameters.projected_volumetric_strain ? &fe : nullptr,
@@ -305,7 +306,7 @@ namespace Signorini
         for (const auto &[name, vector] : fields)
           data_out.add_data_vector(scalar_dofs, vector, name);
       }
-    data_out.build_patches(fe.degree);
+    data_out.build_patches(mapping, fe.degree);
     write_solution_files(data_out, step, time);
   }
 

@@ -31,7 +31,8 @@ namespace Signorini
 
     template <int dim>
     void
-    LinearSolver<dim>::set_null_space(const DoFHandler<dim> &dof_handler,
+    LinearSolver<dim>::set_null_space(const Mapping<dim> &    mapping,
+                                      const DoFHandler<dim> &dof_handler,
                                       const IndexSet &       locally_owned)
     {
       owned = locally_owned;
@@ -46,7 +47,6 @@ namespace Signorini
       const auto &fe = dof_handler.get_fe();
       const std::vector<Point<dim>> &unit_points = fe.get_unit_support_points();
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-      MappingQ1<dim>                       mapping;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {

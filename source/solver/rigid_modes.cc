@@ -114,7 +114,8 @@ namespace Signorini
 
     template <int dim>
     void
-    RigidModes<dim>::setup(const DoFHandler<dim> &          dof_handler,
+    RigidModes<dim>::setup(const Mapping<dim> &             mapping,
+                           const DoFHandler<dim> &          dof_handler,
                            const AffineConstraints<double> &constraints,
                            const IndexSet &                 owned_system,
                            const bool                       axisymmetric,
@@ -155,7 +156,6 @@ namespace Signorini
       n_modes = modes.size();
 
       const auto &                         fe = dof_handler.get_fe();
-      const MappingQ1<dim>                 mapping;
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
       std::vector<std::vector<Candidate>>  best(
         n_bodies, std::vector<Candidate>(n_modes));

@@ -63,6 +63,7 @@ namespace Signorini
        * @p body_force: dim components. Functions are evaluated at the time
        * they are set to. */
       Assembler(const Parameters &                                parameters,
+                const Mapping<dim> &                              mapping,
                 const FESystem<dim> &                             fe,
                 const Materials<dim> &                            materials,
                 const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
@@ -92,6 +93,7 @@ namespace Signorini
                   Vector<double> &   cell_fext) const;
 
       const Parameters &                                       parameters;
+      const Mapping<dim> &                                     mapping;
       const FESystem<dim> &                                    fe;
       const Materials<dim> &                                   materials;
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann;

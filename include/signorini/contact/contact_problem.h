@@ -107,6 +107,7 @@ namespace Signorini
 
     public:
       ContactProblem(const Parameters &     parameters,
+                     const Mapping<dim> &   mapping,
                      const FESystem<dim> &  fe,
                      const DoFHandler<dim> &dof_handler,
                      const Bulk::Materials<dim> &materials,
@@ -807,6 +808,7 @@ namespace Signorini
                            const PointState<dim> &s) const;
 
       const Parameters &     parameters;
+      const Mapping<dim>    &mapping;
       const DoFHandler<dim> &dof_handler;
       const FESystem<dim> &  fe;
       const Bulk::Materials<dim> &materials;

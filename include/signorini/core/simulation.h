@@ -8,6 +8,7 @@
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -332,6 +333,10 @@ namespace Signorini
 
     parallel::distributed::Triangulation<dim> triangulation;
     FESystem<dim>                             fe;
+    // The geometry of the cells: polynomials of the element's degree
+    // through its support points (isoparametric), so that the nodes of a
+    // Q2 element follow a curved boundary (its manifold).
+    const MappingQ<dim> mapping;
     DoFHandler<dim>                           dof_handler;
     IndexSet                                  locally_owned, locally_relevant;
 

@@ -34,11 +34,13 @@ namespace Signorini
        * @p solution that DataOut writes): the volumetric strain projected
        * per cell (B-bar). */
       StressPostprocessor(
+        const Mapping<dim> &                 mapping,
         const Bulk::Materials<dim> &         materials,
         const bool                           axisymmetric = false,
         const FiniteElement<dim> *           projected    = nullptr,
         const TrilinosWrappers::MPI::Vector *solution     = nullptr)
-        : materials(materials)
+        : mapping(mapping)
+        , materials(materials)
         , axisymmetric(axisymmetric)
         , projected(projected)
         , solution(solution)
@@ -87,7 +89,8 @@ namespace Signorini
         if (projected)
           {
             const QGauss<dim> quadrature(projected->degree + 1);
-            FEValues<dim>     fe_values(*projected,
+            FEValues<dim>     fe_values(mapping,
+                                    *projected,
                                     quadrature,
                                     update_values | update_gradients |
                                       update_quadrature_points |
@@ -139,11 +142,11 @@ namespace Signorini
       }
 
     private:
+      const Mapping<dim> &                 mapping;
       const Bulk::Materials<dim> &         materials;
       const bool                           axisymmetric;
       const FiniteElement<dim> *           projected;
       const TrilinosWrappers::MPI::Vector *solution;
-      const MappingQ1<dim>                 mapping;
     };
   } // namespace Postprocess
 } // namespace Signorini

@@ -44,7 +44,8 @@ namespace Signorini
        * dim components of its FE); call after every change of the DoFs.
        */
       void
-      set_null_space(const DoFHandler<dim> &dof_handler,
+      set_null_space(const Mapping<dim> &    mapping,
+                     const DoFHandler<dim> &dof_handler,
                      const IndexSet &       locally_owned_dofs);
 
       /**

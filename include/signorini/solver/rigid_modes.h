@@ -81,7 +81,8 @@ namespace Signorini
        * their parents in the condensed system.
        */
       void
-      setup(const DoFHandler<dim> &          dof_handler,
+      setup(const Mapping<dim> &             mapping,
+            const DoFHandler<dim> &          dof_handler,
             const AffineConstraints<double> &constraints,
             const IndexSet &                 owned_system,
             const bool                       axisymmetric,
