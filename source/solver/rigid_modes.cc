@@ -234,15 +234,16 @@ namespace Signorini
       double                  scale_u = 0, scale_m = 0;
       for (int r = 0; r < A.NumMyRows(); ++r)
         {
-          const auto row = TrilinosWrappers::global_row_index(A, r);
+          const auto row = static_cast<types::global_dof_index>(
+            TrilinosWrappers::global_row_index(A, r));
           int        n   = 0;
           double *   values;
           int *      columns;
           A.ExtractMyRowView(r, n, values, columns);
           for (int k = 0; k < n; ++k)
             {
-              const auto column =
-                TrilinosWrappers::global_column_index(A, columns[k]);
+              const auto column = static_cast<types::global_dof_index>(
+                TrilinosWrappers::global_column_index(A, columns[k]));
               if (row < n_u && column == row)
                 scale_u = std::max(scale_u, std::abs(values[k]));
               else if (row >= n_u && column < n_u)
