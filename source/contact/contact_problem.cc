@@ -71,8 +71,7 @@ namespace Signorini
           const auto &pair = contact.pairs[p];
           // Statuses per multiplier node: integration-point rules, meshed
           // master (the others have one law per node).
-          node_status_pair.push_back(contact.node_status &&
-                                     contact.rule != IntegrationRule::nodal &&
+          node_status_pair.push_back(contact.rule != IntegrationRule::nodal &&
                                      pair.master_is_body());
           friction_node_pair.push_back(node_status_pair.back() &&
                                        pair.friction > 0);

@@ -160,24 +160,6 @@ namespace Signorini
                       "all closed (holds bodies that only "
                       "contact supports; open points are released by "
                       "Newton).");
-    prm.declare_entry("Statuses",
-                      "node",
-                      Patterns::Selection("point|node"),
-                      "Where the contact/free and the stick/slip statuses "
-                      "are decided with the integration-point rules (gauss, "
-                      "simpson, newton-cotes, mortar) on pairs with a meshed "
-                      "master: per multiplier node (node: active nodes close "
-                      "their weighted gap, free nodes carry lambda = 0; "
-                      "sticking nodes close their weighted slip, slipping "
-                      "nodes carry Lambda along it, free nodes Lambda = 0; "
-                      "the converged solution does not depend on the "
-                      "'Normal coefficient' nor on the 'Tangential "
-                      "coefficient', as with the nodal rule), or per "
-                      "contact point (point: the law of every integration "
-                      "point for itself, theory.md). Node needs 'Friction "
-                      "threshold = newton' on frictional pairs. The nodal "
-                      "rule and rigid obstacles have one law per node "
-                      "anyway.");
     prm.declare_entry("Friction threshold",
                       "newton",
                       Patterns::Selection("newton|frozen"),
@@ -267,7 +249,6 @@ namespace Signorini
     initial_status = i == "open"        ? InitialStatus::open :
                      i == "penetrating" ? InitialStatus::penetrating :
                                           InitialStatus::closed;
-    node_status              = prm.get("Statuses") == "node";
     frozen_threshold         = prm.get("Friction threshold") == "frozen";
     newton_geometry = prm.get("Geometric linearisation") != "fixed point";
     newton_geometry_all =
@@ -284,17 +265,19 @@ namespace Signorini
         prm.leave_subsection();
       }
     prm.leave_subsection();
-    // The statuses per node apply to pairs with a meshed master under an
-    // integration-point rule; with friction they need the Newton threshold.
+    // Pairs with a meshed master under an integration-point rule decide
+    // their statuses per node; with friction that needs the Newton
+    // threshold.
     for (unsigned int k = 0; k < pairs.size(); ++k)
-      if (node_status && frozen_threshold && rule != IntegrationRule::nodal &&
+      if (frozen_threshold && rule != IntegrationRule::nodal &&
           pairs[k].master_is_body() && pairs[k].friction > 0)
         throw InputError(
           "subsection 'Contact', parameter 'Friction threshold' = frozen: "
           "pair " + std::to_string(k + 1) + " (friction on a meshed master, "
           "integration rule '" + r + "') decides its statuses per node "
-          "('Statuses = node'), which needs the Newton threshold: set "
-          "'Friction threshold = newton', or 'Statuses = point'.");
+          "(integration-point rules on a meshed master), which needs the "
+          "Newton threshold: set 'Friction threshold = newton', or "
+          "'Integration rule = nodal'.");
   }
 
 

@@ -280,7 +280,11 @@ namespace Signorini
          "K_fc is always kept (the exact Jacobian)."},
         {"Release extrapolation", "release extrapolation is always on."},
         {"Pairing at status changes",
-         "the pairing is renewed between Newton solves only."}};
+         "the pairing is renewed between Newton solves only."},
+        {"Statuses",
+         "the integration-point rules decide the statuses per multiplier "
+         "node on meshed masters (the nodal rule and rigid obstacles: one "
+         "law per node)."}};
       std::string hint;
       for (const auto &[name, instead] : removed)
         if (message.find("No entry with name <" + std::string(name) + ">") !=

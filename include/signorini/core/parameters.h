@@ -321,7 +321,6 @@ namespace Signorini
     unsigned int                       segment_order; // 0: automatic
     NormalChoice                       normal;
     InitialStatus                      initial_status;
-    bool                               node_status; // 'Statuses = node'
     bool                               frozen_threshold;
     // 'Geometric linearisation' for rigid obstacles: Newton on every rigid
     // pair (newton), on the frictionless ones (auto), on none (fixed point).
