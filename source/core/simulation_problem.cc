@@ -49,6 +49,9 @@ namespace Signorini
     assemble(false, trial);
     Solver::Evaluation e;
     e.block = block_residuals();
+    // A trial (line search) is judged by its residual norm alone.
+    if (trial)
+      return e;
     // The force level: internal and external forces, not the residual.
     // Its multiplier rows (scaled by rho_n) hold rho_n times the initial
     // gaps at a 'closed' start, and its displacement rows rho_n times the

@@ -70,7 +70,8 @@ namespace Signorini
       virtual void
       start_solve() = 0;
       /** The residual at the current iterate. A trial evaluation (line
-       * search) is not an iterate of the status history. */
+       * search) is not an iterate of the status history, and only its
+       * block norms are filled in. */
       virtual Evaluation
       evaluate(const bool trial) = 0;
       /** Called once per iterate, after its evaluation and judgement:
