@@ -4,10 +4,11 @@
 // parameters_input.cc).
 #include <deal.II/base/utilities.h>
 
+#include <signorini/contact/obstacles/interface.h>
 #include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
-#include <signorini/contact/obstacles/interface.h>
 #include <signorini/material/interface.h>
+#include <signorini/postprocess/interface.h>
 
 #include "parameters_helpers.h"
 
@@ -644,6 +645,7 @@ namespace Signorini
                       Patterns::Selection("quiet|normal|verbose"),
                       "quiet: summary only; normal: one block per load step; "
                       "verbose: every Newton iteration with its residuals.");
+    Postprocess::declare_parameters(prm);
     prm.leave_subsection();
   }
 
@@ -660,6 +662,7 @@ namespace Signorini
     verbosity = v == "quiet"  ? Verbosity::quiet :
                 v == "normal" ? Verbosity::normal :
                                 Verbosity::verbose;
+    postprocessors = Utilities::split_string_list(prm.get("Postprocessors"));
     prm.leave_subsection();
   }
 

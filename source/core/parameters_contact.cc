@@ -492,6 +492,18 @@ namespace Signorini
   }
 
 
+  bool
+  ReferenceParameters::any() const
+  {
+    return !displacement.empty() || !stress.empty() || max_pressure > 0 ||
+           half_width > 0 || !contact_pressure.empty() ||
+           !point_values.empty() || action_reaction_tolerance > 0 ||
+           slip_law_tolerance > 0 || !contact_force.empty() ||
+           gap_tolerance > 0 || friction_ratio > 0 ||
+           force_variation_tolerance > 0 || cattaneo_mindlin;
+  }
+
+
   void
   ReferenceParameters::parse_parameters(ParameterHandler &prm)
   {

@@ -28,7 +28,6 @@
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 #include <signorini/material/projected_volumetric_strain.h>
-#include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/format.h>
 #include <signorini/postprocess/stress_postprocessor.h>
 #include <signorini/solver/roundoff.h>
@@ -52,28 +51,27 @@ namespace Signorini
   Simulation<dim>::Simulation(const Parameters &parameters,
                               ParameterHandler &prm,
                               const MPI_Comm    mpi_communicator)
-    : parameters(parameters)
-    , prm(prm)
-    , mpi_communicator(mpi_communicator)
-    , pcout(std::cout,
-            Utilities::MPI::this_mpi_process(mpi_communicator) == 0 &&
-              parameters.output.verbosity != Verbosity::quiet)
-    , sout(std::cout,
-           Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-    , materials(Material::make_materials<dim>(parameters, prm))
-    , obstacles(Obstacles::make_obstacles<dim>(parameters, prm))
-    , timer(mpi_communicator,
-            sout,
-            TimerOutput::never,
-            TimerOutput::wall_times)
-    , triangulation(mpi_communicator,
-                    Triangulation<dim>::limit_level_difference_at_vertices)
-    , fe(FE_Q<dim>(parameters.fe_degree), dim)
-    , mapping(parameters.fe_degree)
-    , dof_handler(triangulation)
-    , linear_solver(
-        std::make_unique<Solver::LinearSolver<dim>>(parameters.linear_solver))
-    , contact_reference_checks(parameters)
+      : parameters(parameters)
+      , prm(prm)
+      , mpi_communicator(mpi_communicator)
+      , pcout(std::cout,
+              Utilities::MPI::this_mpi_process(mpi_communicator) == 0 &&
+                parameters.output.verbosity != Verbosity::quiet)
+      , sout(std::cout, Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      , materials(Material::make_materials<dim>(parameters, prm))
+      , obstacles(Obstacles::make_obstacles<dim>(parameters, prm))
+      , timer(mpi_communicator,
+              sout,
+              TimerOutput::never,
+              TimerOutput::wall_times)
+      , triangulation(mpi_communicator,
+                      Triangulation<dim>::limit_level_difference_at_vertices)
+      , fe(FE_Q<dim>(parameters.fe_degree), dim)
+      , mapping(parameters.fe_degree)
+      , dof_handler(triangulation)
+      , linear_solver(
+          std::make_unique<Solver::LinearSolver<dim>>(parameters.linear_solver))
+      , postprocessors(Postprocess::make_postprocessors<dim>(parameters, prm))
   {
     const auto &bc = parameters.boundary_conditions;
     for (unsigned int k = 0; k < bc.dirichlet.size(); ++k)

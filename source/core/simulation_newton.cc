@@ -27,7 +27,6 @@
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 #include <signorini/material/projected_volumetric_strain.h>
-#include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/format.h>
 #include <signorini/postprocess/stress_postprocessor.h>
 #include <signorini/solver/roundoff.h>

@@ -1,4 +1,4 @@
-// Results: reactions, reference errors, VTU and CSV files, statistics, the
+// Results: reactions, postprocessors, VTU and CSV files, statistics, the
 // run summary.
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
@@ -26,7 +26,6 @@
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 #include <signorini/material/projected_volumetric_strain.h>
-#include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/format.h>
 #include <signorini/postprocess/stress_postprocessor.h>
 #include <signorini/solver/roundoff.h>
@@ -107,114 +106,6 @@ namespace Signorini
               reactions[k][d] = 0;
           }
       }
-  }
-
-
-  template <int dim>
-  void
-  Simulation<dim>::compute_reference_errors(const double time)
-  {
-    const auto &ref = parameters.reference;
-    if (ref.displacement.empty() && ref.stress.empty())
-      return;
-    const QGauss<dim> quadrature(fe.degree + 2);
-    FEValues<dim>     fe_values(mapping,
-                            fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_quadrature_points | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    std::vector<Tensor<1, dim>>          u_h(quadrature.size());
-    std::vector<SymmetricTensor<2, dim>> eps_h(quadrature.size());
-    std::unique_ptr<FunctionParser<dim>> u_exact, s_exact;
-    const auto &constants = parameters.boundary_conditions.constants;
-    if (!ref.displacement.empty())
-      u_exact = make_function<dim>(ref.displacement,
-                                   constants,
-                                   "subsection 'Reference solution', "
-                                   "parameter 'Displacement'");
-    if (!ref.stress.empty())
-      s_exact = make_function<dim>(ref.stress,
-                                   constants,
-                                   "subsection 'Reference solution', "
-                                   "parameter 'Stress'");
-    if (u_exact)
-      u_exact->set_time(time);
-    if (s_exact)
-      s_exact->set_time(time);
-
-    // Projected volumetric strain: the stress with theta_bar.
-    Material::ProjectedVolumetricStrain<dim> projection(
-      fe, quadrature, parameters.axisymmetric);
-    Vector<double> local_u(fe.n_dofs_per_cell()), theta_bar;
-
-    double u_err2 = 0, u_norm2 = 0, s_err_max = 0, s_norm_max = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values[displacement].get_function_values(solution, u_h);
-          fe_values[displacement].get_function_symmetric_gradients(solution,
-                                                                   eps_h);
-          if (s_exact && parameters.projected_volumetric_strain)
-            {
-              projection.reinit(fe_values);
-              cell->get_dof_values(solution, local_u);
-              projection.coefficients(local_u, theta_bar);
-            }
-          const auto &material = *materials.at(cell->material_id());
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const auto &x = fe_values.quadrature_point(q);
-              if (u_exact)
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    const double ue = u_exact->value(x, d);
-                    u_err2 += std::pow(u_h[q][d] - ue, 2) * fe_values.JxW(q);
-                    u_norm2 += ue * ue * fe_values.JxW(q);
-                  }
-              if (s_exact)
-                {
-                  // Axisymmetric: the hoop strain u_r / r enters the trace.
-                  const double hoop =
-                    parameters.axisymmetric ? u_h[q][0] / x[0] : 0.;
-                  const double theta =
-                    parameters.projected_volumetric_strain ?
-                      projection.value(theta_bar, quadrature.point(q)) :
-                      0.;
-                  SymmetricTensor<2, 3> stress;
-                  material.evaluate(
-                    Bulk::point_strain<dim>(
-                      eps_h[q],
-                      hoop,
-                      parameters.projected_volumetric_strain ? &theta :
-                                                               nullptr),
-                    stress,
-                    nullptr);
-                  const auto s = Material::from_3d<dim>(stress);
-                  double     e2 = 0, n2 = 0;
-                  for (unsigned int i = 0; i < dim; ++i)
-                    for (unsigned int j = 0; j < dim; ++j)
-                      {
-                        const double se = s_exact->value(x, i * dim + j);
-                        e2 += std::pow(s[i][j] - se, 2);
-                        n2 += se * se;
-                      }
-                  s_err_max  = std::max(s_err_max, std::sqrt(e2));
-                  s_norm_max = std::max(s_norm_max, std::sqrt(n2));
-                }
-            }
-        }
-    u_err2     = Utilities::MPI::sum(u_err2, mpi_communicator);
-    u_norm2    = Utilities::MPI::sum(u_norm2, mpi_communicator);
-    s_err_max  = Utilities::MPI::max(s_err_max, mpi_communicator);
-    s_norm_max = Utilities::MPI::max(s_norm_max, mpi_communicator);
-    if (u_exact)
-      errors.displacement_l2_relative =
-        u_norm2 > 0 ? std::sqrt(u_err2 / u_norm2) : std::sqrt(u_err2);
-    if (s_exact)
-      errors.stress_max_relative =
-        s_norm_max > 0 ? s_err_max / s_norm_max : s_err_max;
   }
 
 
@@ -388,25 +279,12 @@ namespace Signorini
         if (std::abs(s.force[d]) < 1e-10 * force_scale)
           s.force[d] = 0;
     print_step_report(newton_iterations, u_max);
-    // The step's reference checks, also kept for the end of a quiet run.
-    last_checks.clear();
-    const auto &ref    = parameters.reference;
-    const auto  report = [&](const char *what, const double e) {
-      if (e >= 0)
-        record_check(std::string(what) + " = " +
-                       format(std::max(e, 1e-16), 1) + " (tolerance " +
-                       format(ref.tolerance, 1) +
-                       "): " + (e <= ref.tolerance ? "PASS" : "FAIL"),
-                     e <= ref.tolerance);
-    };
-    report("displacement L2 relative error", errors.displacement_l2_relative);
-    report("stress max relative error", errors.stress_max_relative);
     if (contact->active())
-      {
-        print_pair_report(summary);
-        for (const auto &check : contact_checks)
-          record_check(check.text, check.pass);
-      }
+      print_pair_report(summary);
+    // The step's checks, also kept for the end of a quiet run.
+    last_checks.clear();
+    for (const auto &check : step_checks)
+      record_check(check.text, check.pass);
     pcout << std::flush;
     return statistics_lines(step, time, newton_iterations, u_max, summary);
   }
@@ -687,16 +565,7 @@ namespace Signorini
                                       const unsigned int iterations)
   {
     compute_reactions();
-    compute_reference_errors(time);
-    if (contact->active())
-      contact_checks = contact_reference_checks.evaluate(
-        time,
-        *contact,
-        state,
-        force_scale,
-        [this](const Point<dim> &p, const unsigned int c) {
-          return point_value(p, c);
-        });
+    run_postprocessors(step, time);
     append_newton_history();
     const std::string statistics_lines =
       write_statistics(step, time, iterations);
@@ -712,6 +581,35 @@ namespace Signorini
     // all its files on disk.
     append_statistics(statistics_lines);
     last_written_time = time;
+  }
+
+
+  // The postprocessors of 'Output/Postprocessors', in the listed order:
+  // their checks of the step go to step_checks.
+  template <int dim>
+  void
+  Simulation<dim>::run_postprocessors(const unsigned int step,
+                                      const double       time)
+  {
+    const Postprocess::StepData<dim> data{step,
+                                          time,
+                                          parameters,
+                                          mapping,
+                                          dof_handler,
+                                          solution,
+                                          materials,
+                                          contact->active() ? contact.get() :
+                                                              nullptr,
+                                          state,
+                                          force_scale,
+                                          [this](const Point<dim>  &p,
+                                                 const unsigned int c) {
+                                            return point_value(p, c);
+                                          }};
+    step_checks.clear();
+    for (const auto &postprocessor : postprocessors)
+      for (auto &check : postprocessor->execute(data))
+        step_checks.push_back(std::move(check));
   }
 
 

@@ -4,6 +4,8 @@
 #include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/format.h>
 
+#include "parsed_function.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -154,21 +156,6 @@ namespace Signorini
                            "'Friction ratio normal': give a nonzero "
                            "direction.");
         return n / n.norm();
-      }
-
-      template <int dim>
-      std::unique_ptr<FunctionParser<dim>>
-      parsed(const std::vector<std::string>      &expressions,
-             const std::map<std::string, double> &constants)
-      {
-        if (expressions.empty())
-          return nullptr;
-        auto f = std::make_unique<FunctionParser<dim>>(expressions.size());
-        f->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
-                      expressions,
-                      constants,
-                      true);
-        return f;
       }
     } // namespace
 

@@ -222,6 +222,7 @@ namespace Signorini
     bool        write_csv;
     bool        timing_summary;
     Verbosity   verbosity;
+    std::vector<std::string> postprocessors; // names, in the listed order
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
@@ -260,6 +261,10 @@ namespace Signorini
     double                   contact_force_tolerance;
     double                   contact_force_from; // first time checked
     double                  gap_tolerance;           // 0: not checked
+
+    /** Some reference is given (a check is asked for). */
+    bool
+    any() const;
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

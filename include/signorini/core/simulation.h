@@ -14,10 +14,10 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <signorini/bulk/assembler.h>
 #include <signorini/contact/contact_problem.h>
 #include <signorini/core/parameters.h>
-#include <signorini/bulk/assembler.h>
-#include <signorini/postprocess/contact_checks.h>
+#include <signorini/postprocess/interface.h>
 #include <signorini/postprocess/output_files.h>
 #include <signorini/solver/linear_solver.h>
 #include <signorini/solver/load_stepper.h>
@@ -62,7 +62,7 @@ namespace Signorini
    * (the problem the Newton solver iterates on: residual, log rows,
    * linearised solve),
    * simulation_adaptivity.cc (refinement between steps) and
-   * simulation_output.cc (reactions, reference errors, files, summary).
+   * simulation_output.cc (reactions, postprocessors, files, summary).
    */
   template <int dim>
   class Simulation : private Solver::NonlinearProblem,
@@ -79,16 +79,22 @@ namespace Signorini
     void
     run();
 
-    /** Errors against the Reference solution subsection (negative: none). */
-    struct ReferenceErrors
+    /** The checks of the postprocessors at the last written step. */
+    const std::vector<Postprocess::CheckResult> &
+    last_step_checks() const
     {
-      double displacement_l2_relative = -1;
-      double stress_max_relative      = -1;
-    };
-    ReferenceErrors
-    reference_errors() const
+      return step_checks;
+    }
+
+    /** The error of the check @p what at the last written step (NaN: not
+     * checked), e.g. "displacement L2 relative error". */
+    double
+    last_check_error(const std::string &what) const
     {
-      return errors;
+      for (const auto &check : step_checks)
+        if (check.what == what)
+          return check.error;
+      return Postprocess::CheckResult::none;
     }
 
     /** Forces, counts and largest pressure per contact pair at the end
@@ -272,7 +278,7 @@ namespace Signorini
     void
     compute_reactions();
     void
-    compute_reference_errors(const double time);
+    run_postprocessors(const unsigned int step, const double time);
     /** Output directory of the run: earlier results removed, parameters
      * echoed, newton_history.csv started. */
     void
@@ -386,10 +392,10 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector support_force;
     Contact::ContactStatistics    contact_statistics;
     bool                          first_pairing = true;
-    // Contact reference checks (history across steps) and their results
-    // of the step, printed after it.
-    Postprocess::ContactChecks<dim>        contact_reference_checks;
-    std::vector<Postprocess::CheckResult> contact_checks;
+    // The postprocessors of 'Output/Postprocessors' (some keep history
+    // across steps) and their checks of the step, printed after it.
+    std::vector<std::unique_ptr<Postprocess::Interface<dim>>> postprocessors;
+    std::vector<Postprocess::CheckResult>                     step_checks;
     std::vector<std::string>              last_checks; // all checks, last step
     double                        jacobian_error_max  = 0; // Check Jacobian
 
@@ -416,8 +422,7 @@ namespace Signorini
     // force-displacement curves).
     std::vector<Tensor<1, dim>>          dirichlet_displacement;
     std::vector<std::array<bool, dim>>   dirichlet_components;
-    std::vector<std::string>             statistics_header;
-    ReferenceErrors                  errors;
+    std::vector<std::string>                    statistics_header;
     std::vector<std::pair<double, std::string>> pvtu_records;
     // Newton history for newton_history.csv: one row per iterate, and
     // where the iterate belongs (load step, target time, geometric

@@ -8,6 +8,7 @@
 
 #include <signorini/contact/contact_problem.h>
 #include <signorini/core/parameters.h>
+#include <signorini/postprocess/interface.h>
 
 #include <array>
 #include <functional>
@@ -36,21 +37,6 @@ namespace Signorini
   namespace Postprocess
   {
     using namespace dealii;
-
-    /** One reference check: what was compared, the numbers, the verdict,
-     * and the line printed after "reference check: ". */
-    struct CheckResult
-    {
-      static constexpr double none = std::numeric_limits<double>::quiet_NaN();
-      std::string             what;             // the quantity checked
-      double                  value     = none; // where one number is compared
-      double                  reference = none; // with its reference
-      double                  error = none; // the measure against the tolerance
-      double                  tolerance = none;
-      bool        checked = true; // false: does not apply at this step
-      bool        pass    = true;
-      std::string text;
-    };
 
     template <int dim>
     class ContactChecks

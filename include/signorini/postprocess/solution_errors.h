@@ -1,0 +1,50 @@
+#ifndef signorini_postprocess_solution_errors_h
+#define signorini_postprocess_solution_errors_h
+
+#include <deal.II/base/function_parser.h>
+
+#include <signorini/core/parameters.h>
+#include <signorini/postprocess/interface.h>
+
+#include <memory>
+#include <vector>
+
+namespace Signorini
+{
+  namespace Postprocess
+  {
+    using namespace dealii;
+
+    /**
+     * The bulk checks of subsection 'Reference solution': the displacement
+     * against 'Displacement' (relative L2 error over the bodies) and the
+     * stress against 'Stress' (largest pointwise error over the largest
+     * reference stress, at the Gauss points of degree + 2), each against
+     * 'Tolerance'. The stress is the materials' at the computed strain
+     * (with the projected volumetric strain where the run uses it).
+     */
+    template <int dim>
+    class SolutionErrors
+    {
+    public:
+      explicit SolutionErrors(const Parameters &parameters);
+
+      /** The checks of the step (none without references). */
+      std::vector<CheckResult>
+      evaluate(const StepData<dim> &data) const;
+
+    private:
+      struct Sums
+      {
+        double u_error2 = 0, u_norm2 = 0, s_error_max = 0, s_norm_max = 0;
+      };
+      Sums
+      local_sums(const StepData<dim> &data) const;
+
+      const Parameters                    &parameters;
+      std::unique_ptr<FunctionParser<dim>> u_exact, s_exact;
+    };
+  } // namespace Postprocess
+} // namespace Signorini
+
+#endif

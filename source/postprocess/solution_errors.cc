@@ -1,0 +1,168 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <signorini/bulk/assembler.h>
+#include <signorini/material/projected_volumetric_strain.h>
+#include <signorini/postprocess/format.h>
+#include <signorini/postprocess/solution_errors.h>
+
+#include "parsed_function.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace Signorini
+{
+  namespace Postprocess
+  {
+    namespace
+    {
+      // "what = e (tolerance t): PASS|FAIL"
+      CheckResult
+      relative_error(const std::string &what,
+                     const double       error,
+                     const double       tolerance)
+      {
+        CheckResult r;
+        r.what      = what;
+        r.error     = error;
+        r.tolerance = tolerance;
+        r.pass      = error <= tolerance;
+        r.text      = what + " = " + format(std::max(error, 1e-16), 1) +
+                 " (tolerance " + format(tolerance, 1) +
+                 "): " + (r.pass ? "PASS" : "FAIL");
+        return r;
+      }
+    } // namespace
+
+
+    template <int dim>
+    SolutionErrors<dim>::SolutionErrors(const Parameters &parameters)
+        : parameters(parameters)
+        , u_exact(parsed<dim>(parameters.reference.displacement,
+                              parameters.boundary_conditions.constants))
+        , s_exact(parsed<dim>(parameters.reference.stress,
+                              parameters.boundary_conditions.constants))
+    {
+    }
+
+
+    template <int dim>
+    std::vector<CheckResult>
+    SolutionErrors<dim>::evaluate(const StepData<dim> &data) const
+    {
+      if (!u_exact && !s_exact)
+        return {};
+      if (u_exact)
+        u_exact->set_time(data.time);
+      if (s_exact)
+        s_exact->set_time(data.time);
+      Sums           s    = local_sums(data);
+      const MPI_Comm comm = data.dof_handler.get_communicator();
+      s.u_error2          = Utilities::MPI::sum(s.u_error2, comm);
+      s.u_norm2           = Utilities::MPI::sum(s.u_norm2, comm);
+      s.s_error_max       = Utilities::MPI::max(s.s_error_max, comm);
+      s.s_norm_max        = Utilities::MPI::max(s.s_norm_max, comm);
+      const double             tolerance = parameters.reference.tolerance;
+      std::vector<CheckResult> results;
+      if (u_exact)
+        results.push_back(relative_error("displacement L2 relative error",
+                                         s.u_norm2 > 0 ?
+                                           std::sqrt(s.u_error2 / s.u_norm2) :
+                                           std::sqrt(s.u_error2),
+                                         tolerance));
+      if (s_exact)
+        results.push_back(relative_error("stress max relative error",
+                                         s.s_norm_max > 0 ?
+                                           s.s_error_max / s.s_norm_max :
+                                           s.s_error_max,
+                                         tolerance));
+      return results;
+    }
+
+
+    // This rank's cells: the squared L2 error and norm of the
+    // displacement, the largest stress error and reference stress.
+    template <int dim>
+    typename SolutionErrors<dim>::Sums
+    SolutionErrors<dim>::local_sums(const StepData<dim> &data) const
+    {
+      const auto       &fe           = data.dof_handler.get_fe();
+      const bool        axisymmetric = parameters.axisymmetric;
+      const bool        projected    = parameters.projected_volumetric_strain;
+      const QGauss<dim> quadrature(fe.degree + 2);
+      FEValues<dim>     fe_values(data.mapping,
+                              fe,
+                              quadrature,
+                              update_values | update_gradients |
+                                update_quadrature_points | update_JxW_values);
+      const FEValuesExtractors::Vector     displacement(0);
+      std::vector<Tensor<1, dim>>          u_h(quadrature.size());
+      std::vector<SymmetricTensor<2, dim>> eps_h(quadrature.size());
+      // Projected volumetric strain: the stress with theta_bar.
+      Material::ProjectedVolumetricStrain<dim> projection(fe,
+                                                          quadrature,
+                                                          axisymmetric);
+      Vector<double> local_u(fe.n_dofs_per_cell()), theta_bar;
+      Sums           s;
+      for (const auto &cell : data.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            fe_values[displacement].get_function_values(data.displacement, u_h);
+            fe_values[displacement].get_function_symmetric_gradients(
+              data.displacement, eps_h);
+            if (s_exact && projected)
+              {
+                projection.reinit(fe_values);
+                cell->get_dof_values(data.displacement, local_u);
+                projection.coefficients(local_u, theta_bar);
+              }
+            const auto &material = *data.materials.at(cell->material_id());
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                const auto  &x   = fe_values.quadrature_point(q);
+                const double JxW = fe_values.JxW(q);
+                if (u_exact)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      const double ue = u_exact->value(x, d);
+                      s.u_error2 += std::pow(u_h[q][d] - ue, 2) * JxW;
+                      s.u_norm2 += ue * ue * JxW;
+                    }
+                if (!s_exact)
+                  continue;
+                // Axisymmetric: the hoop strain u_r / r enters the trace.
+                const double hoop = axisymmetric ? u_h[q][0] / x[0] : 0.;
+                const double theta =
+                  projected ? projection.value(theta_bar, quadrature.point(q)) :
+                              0.;
+                SymmetricTensor<2, 3> stress;
+                material.evaluate(Bulk::point_strain<dim>(eps_h[q],
+                                                          hoop,
+                                                          projected ? &theta :
+                                                                      nullptr),
+                                  stress,
+                                  nullptr);
+                const auto sigma = Material::from_3d<dim>(stress);
+                double     e2 = 0, n2 = 0;
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = 0; j < dim; ++j)
+                    {
+                      const double se = s_exact->value(x, i * dim + j);
+                      e2 += std::pow(sigma[i][j] - se, 2);
+                      n2 += se * se;
+                    }
+                s.s_error_max = std::max(s.s_error_max, std::sqrt(e2));
+                s.s_norm_max  = std::max(s.s_norm_max, std::sqrt(n2));
+              }
+          }
+      return s;
+    }
+
+
+    template class SolutionErrors<2>;
+    template class SolutionErrors<3>;
+  } // namespace Postprocess
+} // namespace Signorini
