@@ -2,7 +2,7 @@
 // * every derivative block returned by evaluate_contact_law() equals central
 //   finite differences of the returned densities (n, T frozen; g = g0 + n.d,
 //   v = v0 + P d), for dim = 2, 3, states well inside free / stick / slip,
-//   mu = 0, 0.3, 1, Newton (with K_fc) or frozen threshold;
+//   mu = 0, 0.3, 1, Newton on the threshold (with K_fc);
 // * physical facts: free-point residual, converged slip and stick points
 //   have r_f = 0, hand-picked status classification, the zero-threshold rule
 //   of section 3.3, mu = 0, tangent basis properties.
@@ -165,7 +165,6 @@ namespace
     s.Lambda[0] = 0.3;
     if constexpr (dim == 3)
       s.Lambda[1] = -0.2;
-    s.lambda_f_frozen = -1.2;
     switch (which)
       {
         case Which::free:
@@ -249,50 +248,44 @@ namespace
   {
     for (const double mu : {0., 0.3, 1.0})
       for (const Which which : {Which::free, Which::stick, Which::slip})
-        for (const bool newton : {true, false})
-          {
-            // The threshold only matters with friction.
-            if (mu == 0. && !newton)
-              continue;
+        {
+          LawParameters p;
+          p.rho_n = 50.;
+          p.rho_t = 20.;
+          p.mu    = mu;
 
-            LawParameters p;
-            p.rho_n            = 50.;
-            p.rho_t            = 20.;
-            p.mu               = mu;
-            p.threshold_newton = newton;
+          const PointState<dim>    s = make_state<dim>(which);
+          const PointResponse<dim> r = evaluate_contact_law(s, p);
 
-            const PointState<dim>    s = make_state<dim>(which);
-            const PointResponse<dim> r = evaluate_contact_law(s, p);
+          const PointStatus expected =
+            (which == Which::free ?
+               PointStatus::free :
+               (which == Which::stick && mu > 0. ? PointStatus::stick :
+                                                   PointStatus::slip));
+          AssertThrow(r.status == expected,
+                      ExcMessage("Wrong status classification."));
 
-            const PointStatus expected =
-              (which == Which::free ?
-                 PointStatus::free :
-                 (which == Which::stick && mu > 0. ? PointStatus::stick :
-                                                     PointStatus::slip));
-            AssertThrow(r.status == expected,
-                        ExcMessage("Wrong status classification."));
+          const double err = fd_error(s, p);
 
-            const double err = fd_error(s, p);
+          std::ostringstream name;
+          name << dim << "d " << to_string(which) << " mu=" << mu
+               << " lagrange";
+          if (mu > 0.)
+            name << " lambda_f=lambda K_fc";
 
-            std::ostringstream name;
-            name << dim << "d " << to_string(which) << " mu=" << mu
-                 << " lagrange";
-            if (mu > 0.)
-              name << (newton ? " lambda_f=lambda K_fc" : " lambda_f=frozen");
+          std::cout << std::left << std::setw(52) << name.str()
+                    << " status=" << std::setw(5) << to_string(r.status)
+                    << " max rel FD error = " << std::scientific
+                    << std::setprecision(2) << err << std::defaultfloat
+                    << std::endl;
 
-            std::cout << std::left << std::setw(52) << name.str()
-                      << " status=" << std::setw(5) << to_string(r.status)
-                      << " max rel FD error = " << std::scientific
-                      << std::setprecision(2) << err << std::defaultfloat
-                      << std::endl;
-
-            deallog << "case " << name.str()
-                    << ": status = " << to_string(r.status)
-                    << ", max rel FD error < 1e-6: "
-                    << yes_no(err < fd_tolerance) << std::endl;
-            AssertThrow(err < fd_tolerance,
-                        ExcMessage("FD check failed for " + name.str()));
-          }
+          deallog << "case " << name.str()
+                  << ": status = " << to_string(r.status)
+                  << ", max rel FD error < 1e-6: " << yes_no(err < fd_tolerance)
+                  << std::endl;
+          AssertThrow(err < fd_tolerance,
+                      ExcMessage("FD check failed for " + name.str()));
+        }
   }
 
 
@@ -363,12 +356,8 @@ namespace
       const Tensor<1, dim> t = s.slip / s.slip.norm();
       for (unsigned int k = 0; k < dim - 1; ++k)
         s.Lambda[k] = T[k] * t;
-      for (const bool newton : {true, false})
         {
-          LawParameters q    = p;
-          q.threshold_newton = newton;
-          s.lambda_f_frozen  = s.lambda;
-          const auto r       = evaluate_contact_law(s, q);
+          const auto           r = evaluate_contact_law(s, p);
           const Tensor<1, dim> expected_force =
             -s.lambda * n - p.mu * s.lambda * t;
           const bool ok = r.status == PointStatus::slip && r.in_contact &&
@@ -376,7 +365,6 @@ namespace
                           r.r_f.norm() < 1e-14 &&
                           (r.force - expected_force).norm() < 1e-14;
           deallog << dim << "d converged slip point"
-                  << (newton ? "" : " (frozen threshold)")
                   << ": r_c = 0, r_f = 0, force = p (n + mu v/|v|): "
                   << yes_no(ok) << std::endl;
           AssertThrow(ok, ExcInternalError());
@@ -449,35 +437,27 @@ namespace
     // Zero-threshold rule (section 3.3): in contact but lambda_f == 0
     // exactly -> friction rows as at a free point, no friction force, no
     // threshold coupling; the contact part is untouched.
-    for (const bool newton : {true, false})
-      {
-        PointState<dim> s = make_state<dim>(Which::slip);
-        LawParameters   q = p;
-        q.threshold_newton = newton;
-        if (newton)
-          s.lambda = 0.; // lambda_aug = -rho_n g < 0: in contact
-        else
-          s.lambda_f_frozen = 0.;
-        const auto r = evaluate_contact_law(s, q);
-        const Tensor<1, dim> contact_force =
-          -(s.lambda - p.rho_n * s.gap) * n;
-        Tensor<2, dim - 1> identity;
-        for (unsigned int k = 0; k < dim - 1; ++k)
-          identity[k][k] = 1.;
-        bool ok = r.in_contact && !r.friction_active && r.lambda_f == 0. &&
-                  r.status == PointStatus::slip && r.r_f == s.Lambda &&
-                  r.drf_dLambda == identity && r.drf_dlambda.norm() == 0. &&
-                  (r.force - contact_force).norm() < 1e-13 &&
-                  (r.dforce_dlambda + n).norm() == 0. &&
-                  (r.dforce_dd - p.rho_n * outer_product(n, n)).norm() == 0.;
-        for (unsigned int k = 0; k < dim - 1; ++k)
-          ok = ok && r.dforce_dLambda[k].norm() == 0. &&
-               r.drf_dd[k].norm() == 0.;
-        deallog << dim << "d zero threshold"
-                << (newton ? " (lambda = 0)" : " (frozen lambda_f = 0)")
-                << ": friction treated as free: " << yes_no(ok) << std::endl;
-        AssertThrow(ok, ExcInternalError());
-      }
+    {
+      PointState<dim> s      = make_state<dim>(Which::slip);
+      s.lambda               = 0.; // lambda_aug = -rho_n g < 0: in contact
+      const auto           r = evaluate_contact_law(s, p);
+      const Tensor<1, dim> contact_force = -(s.lambda - p.rho_n * s.gap) * n;
+      Tensor<2, dim - 1>   identity;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        identity[k][k] = 1.;
+      bool ok = r.in_contact && !r.friction_active && r.lambda_f == 0. &&
+                r.status == PointStatus::slip && r.r_f == s.Lambda &&
+                r.drf_dLambda == identity && r.drf_dlambda.norm() == 0. &&
+                (r.force - contact_force).norm() < 1e-13 &&
+                (r.dforce_dlambda + n).norm() == 0. &&
+                (r.dforce_dd - p.rho_n * outer_product(n, n)).norm() == 0.;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        ok = ok && r.dforce_dLambda[k].norm() == 0. && r.drf_dd[k].norm() == 0.;
+      deallog << dim << "d zero threshold"
+              << " (lambda = 0)"
+              << ": friction treated as free: " << yes_no(ok) << std::endl;
+      AssertThrow(ok, ExcInternalError());
+    }
 
     // mu = 0: in contact -> slip, no friction contributions at all.
     {

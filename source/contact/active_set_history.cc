@@ -85,7 +85,6 @@ namespace Signorini
     unsigned int
     ContactProblem<dim>::end_geometric_iteration(const unsigned int g)
     {
-      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
       unsigned int       n            = 0;
       for (auto &point : points)
         {
@@ -99,8 +98,7 @@ namespace Signorini
           const bool differs_from_1 =
             status != point.geo_status_1 ||
             (status == PointStatus::slip && dir * point.geo_direction_1 < 0);
-          if (freeze_after > 0 && g >= 3 && !point.geometric_freeze &&
-              same_as_2 && differs_from_1)
+          if (g >= 3 && !point.geometric_freeze && same_as_2 && differs_from_1)
             {
               ++n;
               point.geometric_freeze = true;
@@ -447,14 +445,13 @@ namespace Signorini
             ((status == point.status_before &&
               (status != PointStatus::slip ||
                r.slip_direction * point.direction_before >= 0)) ||
-             (freeze_after > 0 && point.changes > 2 * freeze_after));
+             (point.changes > 2 * freeze_after));
           if (back)
             {
               ++point.cycles;
               ++stats.n_cycling;
             }
-          if (back && freeze_after > 0 && point.cycles >= freeze_after &&
-              !point.was_frozen)
+          if (back && point.cycles >= freeze_after && !point.was_frozen)
             {
               // Freeze from the next evaluation on: in contact if the cycle
               // went through 'free', slipping in the last slip direction if

@@ -178,9 +178,8 @@ namespace Signorini
                 motion_at_start[p].inverse(e.x_e - e.du_e)))
               .x_m;
         }
-      s.normal          = point.normal;
-      s.tangents        = point.tangents;
-      s.lambda_f_frozen = point.lambda_frozen;
+      s.normal   = point.normal;
+      s.tangents = point.tangents;
 
       e.master =
         point.master_face >= 0 ? &master_faces[point.master_face] : nullptr;

@@ -114,9 +114,7 @@ namespace Signorini
               T_Lambda += point.psi[l] *
                           state[face.friction_dofs[l * (dim - 1) + k]] *
                           point.tangents[k];
-          const double lambda_f =
-            parameters.contact.frozen_threshold ? point.lambda_frozen : lambda;
-          force -= mu * lambda_f * T_Lambda;
+          force -= mu * lambda * T_Lambda;
         }
       return force;
     }

@@ -206,7 +206,6 @@ namespace Signorini
       {
         const PointState<dim> &state;
         double                 mu, rho_t, mu_lf;
-        bool                   lambda_depends;
         Tensor<2, dim>         P;
         Tensor<1, dim>         v;
       };
@@ -227,8 +226,7 @@ namespace Signorini
         for (unsigned int k = 0; k < dim - 1; ++k)
           response.dforce_dLambda[k] = -f.mu_lf * T[k];
         // K_ec threshold coupling: -mu P_B(h).
-        if (f.lambda_depends)
-          response.dforce_dlambda += -f.mu * h;
+        response.dforce_dlambda += -f.mu * h;
         // L_f^f = -w psi mu lambda_f T^T v; K_ff = 0.
         for (unsigned int k = 0; k < dim - 1; ++k)
           {
@@ -236,8 +234,7 @@ namespace Signorini
             // T^T P = T^T since T is tangent.
             response.drf_dd[k] = -f.mu_lf * T[k];
             // K_fc (stick) = -mu T^T v; vanishes at convergence (v = 0).
-            if (f.lambda_depends)
-              response.drf_dlambda[k] = -f.mu * (T[k] * f.v);
+            response.drf_dlambda[k] = -f.mu * (T[k] * f.v);
           }
       }
 
@@ -263,8 +260,7 @@ namespace Signorini
         response.dforce_dd += -mu_lf * f.rho_t * K_B_P;
         for (unsigned int k = 0; k < dim - 1; ++k)
           response.dforce_dLambda[k] = -mu_lf * (K_B * T[k]);
-        if (f.lambda_depends)
-          response.dforce_dlambda += -f.mu * q;
+        response.dforce_dlambda += -f.mu * q;
         // L_f^f = +w psi (mu lambda_f / rho_t) T^T (T Lambda - h / |h|).
         for (unsigned int k = 0; k < dim - 1; ++k)
           {
@@ -277,8 +273,7 @@ namespace Signorini
               response.drf_dLambda[k][l] =
                 mu_lf / f.rho_t * ((k == l ? 1. : 0.) - T[k] * (K_B * T[l]));
             // K_fc (slip) = (mu / rho_t) T^T (T Lambda - h / |h|).
-            if (f.lambda_depends)
-              response.drf_dlambda[k] = f.mu / f.rho_t * residual_k;
+            response.drf_dlambda[k] = f.mu / f.rho_t * residual_k;
           }
       }
     } // namespace
@@ -314,20 +309,18 @@ namespace Signorini
       if (parameters.mu == 0.)
         return response;
 
-      // Section 3.3: Newton on the threshold (lambda_f = lambda, default) or
-      // frozen threshold. No clamping of the sign of lambda_f: the formulas
-      // of sections 4-5 are applied as written, which keeps the Jacobian the
-      // exact derivative also at iterates where an in-contact point has
-      // lambda > 0.
-      const double lambda_f =
-        (parameters.threshold_newton ? state.lambda : state.lambda_f_frozen);
+      // Section 3.3: Newton on the threshold, lambda_f = lambda. No clamping
+      // of the sign of lambda_f: the formulas of sections 4-5 are applied
+      // as written, which keeps the Jacobian the exact derivative also at
+      // iterates where an in-contact point has lambda > 0.
+      const double lambda_f = state.lambda;
       response.lambda_f = lambda_f;
 
       // Section 3.3: in contact with lambda_f == 0 is treated as a free
       // point for friction, otherwise K_ff = 0 (stick) or
       // (mu lambda_f / rho_t)(...) = 0 (slip) would make the f block
       // singular. This is the value a point carries right after it closes
-      // (lambda or the frozen threshold still 0); "zero" means at most
+      // (lambda still 0); "zero" means at most
       // zero_threshold, the round-off level of the solve that closed it.
       response.friction_active =
         response.in_contact &&
@@ -353,7 +346,6 @@ namespace Signorini
                                  parameters.mu,
                                  parameters.rho_t,
                                  parameters.mu * lambda_f,
-                                 parameters.threshold_newton,
                                  P,
                                  P * state.slip};
       Tensor<1, dim> T_Lambda;

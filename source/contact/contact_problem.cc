@@ -51,9 +51,7 @@ namespace Signorini
     {
       const auto &contact = parameters.contact;
       mortar              = contact.rule == IntegrationRule::mortar;
-      segment_order       = contact.segment_order > 0 ?
-                              contact.segment_order :
-                              exact_segment_order<dim>(parameters.fe_degree);
+      segment_order       = exact_segment_order<dim>(parameters.fe_degree);
       // With the mortar rule, a rigid analytic master has no faces to cut
       // its slave faces by: they use the nodal rule, one law per multiplier
       // node. Statuses at Gauss points with interpolated multipliers may
@@ -91,9 +89,8 @@ namespace Signorini
                                         pair.friction == 0 &&
                                         pair.master_is_body() && !mortar &&
                                         contact.normal == NormalChoice::master);
-          pairing_exact = (p == 0 || pairing_exact) &&
-                          newton_geometry_pair.back() &&
-                          !(contact.frozen_threshold && pair.friction > 0);
+          pairing_exact =
+            (p == 0 || pairing_exact) && newton_geometry_pair.back();
           // A frictionless meshed master paired at fixed points and
           // normals within each Newton solve.
           const bool frictionless_fixed_body = pair.friction == 0 &&
@@ -127,7 +124,6 @@ namespace Signorini
       law.rho_n              = rho_n[p];
       law.rho_t              = rho_t[p];
       law.mu                 = parameters.contact.pairs[p].friction;
-      law.threshold_newton   = !parameters.contact.frozen_threshold;
       law.zero_threshold     = 1e-12 * youngs[p];
       if (law.mu > 0)
         {

@@ -85,14 +85,9 @@ namespace Signorini
       const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
     {
       const auto        &contact      = parameters.contact;
-      const unsigned int freeze_after = contact.freeze_after_cycles;
       const auto        &face         = slave_faces[point.face];
       const unsigned int p            = face.pair;
       const Point<dim>   x_e          = slave_position(point, state);
-      double             lambda       = 0;
-      for (unsigned int l = 0; l < face.node_local.size(); ++l)
-        lambda += state[face.lambda_dofs[l]] * point.psi[l];
-      point.lambda_frozen = lambda;
 
       point.paired      = false;
       point.master_face = -1;
@@ -136,8 +131,8 @@ namespace Signorini
       // Pairing 2-cycle: back on the face of two pairings before.
       bool pinned = false;
       if (!mortar && !obstacles[p] && point.pinned_face < 0 &&
-          freeze_after > 0 && point.master_face >= 0 &&
-          pairings_in_step >= 3 && point.master_face == point.geo_face_2 &&
+          point.master_face >= 0 && pairings_in_step >= 3 &&
+          point.master_face == point.geo_face_2 &&
           point.master_face != point.geo_face_1)
         {
           point.pinned_face = point.master_face;

@@ -309,7 +309,7 @@ namespace Signorini
       c.changes += changed;
       const bool back = changed && iterates_recorded >= 2 &&
                         (!friction_status_differs(&c.before, used) ||
-                         (freeze_after > 0 && c.changes > 2 * freeze_after));
+                         (c.changes > 2 * freeze_after));
       if (back)
         {
           ++c.cycles;
@@ -318,8 +318,7 @@ namespace Signorini
       // Frozen from the next evaluation on, slipping along the last slip
       // direction of the cycle (the cycle went through stick, or reversed:
       // then the current one).
-      if (back && freeze_after > 0 && c.cycles >= freeze_after &&
-          !c.was_frozen && used.active)
+      if (back && c.cycles >= freeze_after && !c.was_frozen && used.active)
         {
           const Tensor<1, dim - 1> h =
             !used.stick ? used.H :

@@ -130,21 +130,14 @@ namespace Signorini
                       "newton-cotes (closed Newton-Cotes of degree "
                       "'Integration order' = 1, 2, 4 or 6), mortar "
                       "(segment-based: each slave face cut by the master "
-                      "faces it overlaps, 'Segment order' points on every "
-                      "piece; passes the contact patch test on non-matching "
+                      "faces it overlaps, on every piece the Gauss rule "
+                      "exact for psi x N^m on flat faces; passes the contact "
+                      "patch test on non-matching "
                       "meshes).");
     prm.declare_entry("Integration order",
                       "2",
                       Patterns::Integer(1, 12),
                       "Order of the gauss, simpson or newton-cotes rule.");
-    prm.declare_entry("Segment order",
-                      "0",
-                      Patterns::Integer(0, 7),
-                      "Mortar rule: Gauss points per segment (2D) or points "
-                      "per direction of the triangle rule (3D), exact to "
-                      "degree 2n-1. 0: the smallest order that integrates "
-                      "psi x N^m exactly on flat faces (2D: degree+1, 3D: "
-                      "2 degree+1).");
     prm.declare_entry("Normal",
                       "master",
                       Patterns::Selection("master|slave|average"),
@@ -160,12 +153,6 @@ namespace Signorini
                       "all closed (holds bodies that only "
                       "contact supports; open points are released by "
                       "Newton).");
-    prm.declare_entry("Friction threshold",
-                      "newton",
-                      Patterns::Selection("newton|frozen"),
-                      "lambda_f = current lambda (newton, formulation.md 3.3) "
-                      "or lambda of the previous geometric iteration "
-                      "(frozen).");
     prm.declare_entry("Geometric linearisation",
                       "auto",
                       Patterns::Selection("auto|fixed point|newton"),
@@ -202,22 +189,6 @@ namespace Signorini
                       Patterns::Integer(1, 1000),
                       "Cap of the geometric loop; reaching it fails the step "
                       "(which is then cut).");
-    prm.declare_entry("Freeze after cycles",
-                      "3",
-                      Patterns::Integer(0, 100),
-                      "Anti-cycling (formulation.md 8): a contact point "
-                      "whose status returns to the one it had two Newton "
-                      "iterates before (stick/slip/stick, contact/free/"
-                      "contact, slip direction reversed and back) this many "
-                      "times in one Newton solve is frozen: kept in contact, "
-                      "or kept slipping in its last slip direction. A frozen "
-                      "point that the plain law contradicts at convergence "
-                      "is released and Newton goes on. Across pairings "
-                      "(geometric loop), a point back at its converged "
-                      "status of two pairings before keeps one status, and "
-                      "a point back on its master face of two pairings "
-                      "before stays on that face, for the rest of the load "
-                      "step. 0: never freeze.");
     for (unsigned int k = 1; k <= counts.n_pairs; ++k)
       {
         prm.enter_subsection("Pair " + std::to_string(k));
@@ -239,24 +210,21 @@ namespace Signorini
             r == "simpson" ? IntegrationRule::simpson :
             r == "mortar"  ? IntegrationRule::mortar :
                              IntegrationRule::newton_cotes;
-    order         = prm.get_integer("Integration order");
-    segment_order = prm.get_integer("Segment order");
+    order               = prm.get_integer("Integration order");
     const std::string n = prm.get("Normal");
     normal = n == "master" ? NormalChoice::master :
              n == "slave"  ? NormalChoice::slave :
                              NormalChoice::average;
     const std::string i = prm.get("Initial status");
-    initial_status = i == "open"        ? InitialStatus::open :
-                     i == "penetrating" ? InitialStatus::penetrating :
-                                          InitialStatus::closed;
-    frozen_threshold         = prm.get("Friction threshold") == "frozen";
+    initial_status      = i == "open"        ? InitialStatus::open :
+                          i == "penetrating" ? InitialStatus::penetrating :
+                                               InitialStatus::closed;
     newton_geometry = prm.get("Geometric linearisation") != "fixed point";
     newton_geometry_all =
       prm.get("Geometric linearisation") == "newton";
     projection_tolerance     = prm.get_double("Projection tolerance");
     geometric_tolerance      = prm.get_double("Geometric tolerance");
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
-    freeze_after_cycles      = prm.get_integer("Freeze after cycles");
     pairs.resize(counts.n_pairs);
     for (unsigned int k = 0; k < counts.n_pairs; ++k)
       {
@@ -265,19 +233,6 @@ namespace Signorini
         prm.leave_subsection();
       }
     prm.leave_subsection();
-    // Pairs with a meshed master under an integration-point rule decide
-    // their statuses per node; with friction that needs the Newton
-    // threshold.
-    for (unsigned int k = 0; k < pairs.size(); ++k)
-      if (frozen_threshold && rule != IntegrationRule::nodal &&
-          pairs[k].master_is_body() && pairs[k].friction > 0)
-        throw InputError(
-          "subsection 'Contact', parameter 'Friction threshold' = frozen: "
-          "pair " + std::to_string(k + 1) + " (friction on a meshed master, "
-          "integration rule '" + r + "') decides its statuses per node "
-          "(integration-point rules on a meshed master), which needs the "
-          "Newton threshold: set 'Friction threshold = newton', or "
-          "'Integration rule = nodal'.");
   }
 
 

@@ -276,15 +276,22 @@ namespace Signorini
         {"Penalty",
          "the penalty law went; contact is always the augmented Lagrangian "
          "law."},
-        {"Threshold coupling",
-         "K_fc is always kept (the exact Jacobian)."},
+        {"Threshold coupling", "K_fc is always kept (the exact Jacobian)."},
         {"Release extrapolation", "release extrapolation is always on."},
         {"Pairing at status changes",
          "the pairing is renewed between Newton solves only."},
         {"Statuses",
          "the integration-point rules decide the statuses per multiplier "
          "node on meshed masters (the nodal rule and rigid obstacles: one "
-         "law per node)."}};
+         "law per node)."},
+        {"Friction threshold",
+         "the friction threshold is always the current contact pressure "
+         "(Newton on the threshold)."},
+        {"Freeze after cycles",
+         "a contact point is frozen after 3 status cycles in one Newton "
+         "solve."},
+        {"Segment order",
+         "the mortar rule always uses the order exact for flat faces."}};
       std::string hint;
       for (const auto &[name, instead] : removed)
         if (message.find("No entry with name <" + std::string(name) + ">") !=

@@ -70,12 +70,6 @@ namespace Signorini
       double zero_threshold = 0.;
 
       /**
-       * true: lambda_f = current lambda (Newton on the threshold, section
-       * 3.3, the default); false: lambda_f = PointState::lambda_f_frozen.
-       */
-      bool threshold_newton = true;
-
-      /**
        * Weight of the friction law of a point whose friction is inactive
        * (free, or closed with a zero threshold): its Lambda row is
        * free_friction_scale * Lambda [Pa m], so that it has the units of
@@ -130,12 +124,6 @@ namespace Signorini
        * mu == 0.
        */
       Tensor<1, dim - 1> Lambda;
-
-      /**
-       * Frozen friction threshold lambda_f [Pa], used only when
-       * LawParameters::threshold_newton is false.
-       */
-      double lambda_f_frozen = 0.;
 
       /**
        * Anti-cycling (formulation.md 8, "status freeze"): keep the contact

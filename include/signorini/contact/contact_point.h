@@ -46,7 +46,6 @@ namespace Signorini
       unsigned int   tangent_axis = 0; // 3D axis of T, fixed at pairing
       Point<dim>     x_m_rigid;
       Tensor<1, dim> rigid_increment;
-      double         lambda_frozen = 0;
       // Last evaluation:
       PointStatus        status = PointStatus::free;
       bool               friction_active = false; // law branch, 3.3
