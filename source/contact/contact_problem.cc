@@ -79,16 +79,14 @@ namespace Signorini
           newton_geometry_pair.push_back(
             contact.newton_geometry &&
             (pair.friction == 0 || contact.newton_geometry_all) &&
-            !pair.master_is_body() && contact.normal == NormalChoice::master);
+            !pair.master_is_body());
           // Newton on the pairing of a meshed master ('newton' only; auto
           // keeps the fixed point, doc/robustness.md): frictionless (the
           // slip of a meshed pair is not linearised in the geometry),
-          // fixed points (the mortar rule cuts faces at each pairing) and
-          // the master normal.
+          // fixed points (the mortar rule cuts faces at each pairing).
           newton_pairing_pair.push_back(contact.newton_geometry_all &&
                                         pair.friction == 0 &&
-                                        pair.master_is_body() && !mortar &&
-                                        contact.normal == NormalChoice::master);
+                                        pair.master_is_body() && !mortar);
           pairing_exact =
             (p == 0 || pairing_exact) && newton_geometry_pair.back();
           // A frictionless meshed master paired at fixed points and

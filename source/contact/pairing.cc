@@ -144,14 +144,6 @@ namespace Signorini
       // the slave's outward normal.
       if (!point.paired)
         point.normal = point.slave_normal;
-      // Normal choice (nodal rule only, checked at input).
-      if (contact.normal == NormalChoice::slave)
-        point.normal = point.slave_normal;
-      else if (contact.normal == NormalChoice::average && point.paired)
-        {
-          point.normal += point.slave_normal;
-          point.normal /= point.normal.norm();
-        }
       // The 3D crossing axis of T is kept until the next pairing, so that T
       // stays smooth in n when n follows the iterate.
       point.tangent_axis = tangent_axis<dim>(point.normal);

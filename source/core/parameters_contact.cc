@@ -138,12 +138,6 @@ namespace Signorini
                       "2",
                       Patterns::Integer(1, 12),
                       "Order of the gauss, simpson or newton-cotes rule.");
-    prm.declare_entry("Normal",
-                      "master",
-                      Patterns::Selection("master|slave|average"),
-                      "Contact normal: the master normal at the projection "
-                      "(any rule), or the slave normal / the average of both "
-                      "(nodal rule only).");
     prm.declare_entry("Initial status",
                       "penetrating",
                       Patterns::Selection("open|penetrating|closed"),
@@ -211,10 +205,6 @@ namespace Signorini
             r == "mortar"  ? IntegrationRule::mortar :
                              IntegrationRule::newton_cotes;
     order               = prm.get_integer("Integration order");
-    const std::string n = prm.get("Normal");
-    normal = n == "master" ? NormalChoice::master :
-             n == "slave"  ? NormalChoice::slave :
-                             NormalChoice::average;
     const std::string i = prm.get("Initial status");
     initial_status      = i == "open"        ? InitialStatus::open :
                           i == "penetrating" ? InitialStatus::penetrating :

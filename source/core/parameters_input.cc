@@ -170,11 +170,6 @@ namespace Signorini
                        "the newton-cotes rule exists for orders 1, 2, 4 and 6 "
                        "(trapezoid, Simpson, Milne, Weddle), not " +
                        std::to_string(c.order) + ".");
-    if (c.normal != NormalChoice::master && c.rule != IntegrationRule::nodal)
-      throw InputError("subsection 'Contact', parameter 'Normal': the slave "
-                       "and average normals are defined at nodes and need "
-                       "'Integration rule = nodal'. Set 'Normal = master' or "
-                       "'Integration rule = nodal'.");
     if (axisymmetric && dimension != 2)
       throw InputError("parameter 'Axisymmetric': an axisymmetric model is a "
                        "2D meridian section; set 'Dimension = 2' or "
@@ -291,7 +286,10 @@ namespace Signorini
          "a contact point is frozen after 3 status cycles in one Newton "
          "solve."},
         {"Segment order",
-         "the mortar rule always uses the order exact for flat faces."}};
+         "the mortar rule always uses the order exact for flat faces."},
+        {"Normal",
+         "the contact normal is always the master's (the slave and average "
+         "normals failed action = reaction and gap checks)."}};
       std::string hint;
       for (const auto &[name, instead] : removed)
         if (message.find("No entry with name <" + std::string(name) + ">") !=

@@ -304,13 +304,6 @@ namespace Signorini
     mortar
   };
 
-  enum class NormalChoice
-  {
-    master,
-    slave,
-    average
-  };
-
   enum class InitialStatus
   {
     open,
@@ -323,7 +316,6 @@ namespace Signorini
     std::vector<ContactPairParameters> pairs;
     IntegrationRule                    rule;
     unsigned int                       order;
-    NormalChoice                       normal;
     InitialStatus                      initial_status;
     // 'Geometric linearisation' for rigid obstacles: Newton on every rigid
     // pair (newton), on the frictionless ones (auto), on none (fixed point).
