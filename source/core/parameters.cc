@@ -27,6 +27,35 @@ namespace Signorini
   using internal::to_doubles;
   using internal::to_unsigned;
 
+  namespace
+  {
+    using internal::SelectionTable;
+    // One table per selection entry (its pattern and its parsing).
+    const SelectionTable<BodyShape> body_shapes{
+      {"block", BodyShape::block},
+      {"ball segment", BodyShape::ball_segment},
+      {"cylinder segment", BodyShape::cylinder_segment},
+      {"file", BodyShape::file}};
+    const SelectionTable<Segment>     segments{{"full", Segment::full},
+                                           {"half", Segment::half},
+                                           {"quarter", Segment::quarter}};
+    const SelectionTable<NeumannType> neumann_types{
+      {"traction", NeumannType::traction},
+      {"pressure", NeumannType::pressure}};
+    const SelectionTable<LinearSolverType> solver_types{
+      {"direct", LinearSolverType::direct},
+      {"CG", LinearSolverType::cg},
+      {"GMRES", LinearSolverType::gmres}};
+    const SelectionTable<Verbosity> verbosities{{"quiet", Verbosity::quiet},
+                                                {"normal", Verbosity::normal},
+                                                {"verbose",
+                                                 Verbosity::verbose}};
+    using AdaptedSteps = AdaptivityParameters::Steps;
+    const SelectionTable<AdaptedSteps> adapted_steps{
+      {"last", AdaptedSteps::last},
+      {"every", AdaptedSteps::every},
+      {"between", AdaptedSteps::between}};
+  } // namespace
 
 
   std::vector<std::string>
@@ -63,7 +92,7 @@ namespace Signorini
     prm.declare_entry(
       "Shape",
       "block",
-      Patterns::Selection("block|ball segment|cylinder segment|file"),
+      body_shapes.pattern(),
       "How this body's mesh is made. block: rectangle (2D) or box (3D) between "
       "'Lower corner' and 'Upper corner' with 'Subdivisions' cells per "
       "direction; boundary faces numbered 0..3 (2D: x-, x+, y-, y+) or 0..5 "
@@ -101,7 +130,7 @@ namespace Signorini
                       "Radius of a ball or cylinder segment [m].");
     prm.declare_entry("Segment",
                       "half",
-                      Patterns::Selection("full|half|quarter"),
+                      segments.pattern(),
                       "Part of the disc/ball kept: full, the half below the "
                       "centre, or the quarter below the centre with x >= "
                       "centre (for symmetric models).");
@@ -145,20 +174,13 @@ namespace Signorini
   void
   BodyParameters::parse_parameters(ParameterHandler &prm)
   {
-    const std::string s = prm.get("Shape");
-    shape               = s == "block"            ? BodyShape::block :
-                          s == "ball segment"     ? BodyShape::ball_segment :
-                          s == "cylinder segment" ? BodyShape::cylinder_segment :
-                                                    BodyShape::file;
+    shape        = body_shapes.value(prm.get("Shape"));
     lower_corner = to_doubles(prm.get("Lower corner"));
     upper_corner = to_doubles(prm.get("Upper corner"));
     subdivisions = to_unsigned(prm.get("Subdivisions"));
     centre       = to_doubles(prm.get("Centre"));
     radius       = prm.get_double("Radius");
-    const std::string seg = prm.get("Segment");
-    segment     = seg == "full" ? Segment::full :
-                  seg == "half" ? Segment::half :
-                                  Segment::quarter;
+    segment      = segments.value(prm.get("Segment"));
     length      = prm.get_double("Length");
     mesh_file   = prm.get("Mesh file");
     boundary_id_map.clear();
@@ -331,7 +353,7 @@ namespace Signorini
                       "Boundary id(s) loaded by this condition.");
     prm.declare_entry("Type",
                       "traction",
-                      Patterns::Selection("traction|pressure"),
+                      neumann_types.pattern(),
                       "traction: a surface force vector; pressure: a scalar "
                       "acting against the outward normal (positive "
                       "compresses).");
@@ -348,8 +370,7 @@ namespace Signorini
   NeumannParameters::parse_parameters(ParameterHandler &prm)
   {
     boundary_ids = to_unsigned(prm.get("Boundary id"));
-    type   = prm.get("Type") == "traction" ? NeumannType::traction :
-                                             NeumannType::pressure;
+    type         = neumann_types.value(prm.get("Type"));
     values = split_expressions(prm.get("Values"));
   }
 
@@ -569,7 +590,7 @@ namespace Signorini
     prm.enter_subsection("Linear solver");
     prm.declare_entry("Type",
                       "direct",
-                      Patterns::Selection("direct|CG|GMRES"),
+                      solver_types.pattern(),
                       "direct: sparse LU (MUMPS by default); CG or GMRES: "
                       "Krylov method preconditioned by Trilinos ML AMG with "
                       "rigid-body modes. With contact: GMRES only, with a "
@@ -605,10 +626,7 @@ namespace Signorini
   LinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    const std::string t = prm.get("Type");
-    type = t == "direct" ? LinearSolverType::direct :
-           t == "CG"     ? LinearSolverType::cg :
-                           LinearSolverType::gmres;
+    type = solver_types.value(prm.get("Type"));
     direct_package =
       prm.get("Direct solver") == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu";
     relative_tolerance = prm.get_double("Relative tolerance");
@@ -642,7 +660,7 @@ namespace Signorini
                       "Print the wall-time table at the end of the run.");
     prm.declare_entry("Verbosity",
                       "normal",
-                      Patterns::Selection("quiet|normal|verbose"),
+                      verbosities.pattern(),
                       "quiet: summary only; normal: one block per load step; "
                       "verbose: every Newton iteration with its residuals.");
     Postprocess::declare_parameters(prm);
@@ -658,10 +676,7 @@ namespace Signorini
     write_vtu      = prm.get_bool("Write VTU");
     write_csv      = prm.get_bool("Write CSV");
     timing_summary = prm.get_bool("Timing summary");
-    const std::string v = prm.get("Verbosity");
-    verbosity = v == "quiet"  ? Verbosity::quiet :
-                v == "normal" ? Verbosity::normal :
-                                Verbosity::verbose;
+    verbosity      = verbosities.value(prm.get("Verbosity"));
     postprocessors = Utilities::split_string_list(prm.get("Postprocessors"));
     prm.leave_subsection();
   }
@@ -685,7 +700,7 @@ namespace Signorini
                       "refinement cycles between two steps, no solve).");
     prm.declare_entry("Steps",
                       "last",
-                      Patterns::Selection("last|every|between"),
+                      adapted_steps.pattern(),
                       "Which load steps are adapted: the last one only "
                       "(a mesh for the final state, e.g. Hertz); every "
                       "one, solved again on its adapted mesh (the mesh "
@@ -732,10 +747,7 @@ namespace Signorini
   {
     prm.enter_subsection("Adaptive refinement");
     cycles              = prm.get_integer("Cycles");
-    const std::string s = prm.get("Steps");
-    steps = s == "every"   ? Steps::every :
-            s == "between" ? Steps::between :
-                             Steps::last;
+    steps               = adapted_steps.value(prm.get("Steps"));
     refinement_fraction = prm.get_double("Refinement fraction");
     coarsening_fraction = prm.get_double("Coarsening fraction");
     refine_contact_zone = prm.get_bool("Refine contact zone");

@@ -24,6 +24,21 @@ namespace Signorini
   using internal::to_doubles;
   using internal::to_unsigned;
 
+  namespace
+  {
+    using internal::SelectionTable;
+    const SelectionTable<IntegrationRule> integration_rules{
+      {"nodal", IntegrationRule::nodal},
+      {"gauss", IntegrationRule::gauss},
+      {"simpson", IntegrationRule::simpson},
+      {"newton-cotes", IntegrationRule::newton_cotes},
+      {"mortar", IntegrationRule::mortar}};
+    const SelectionTable<InitialStatus> initial_statuses{
+      {"open", InitialStatus::open},
+      {"penetrating", InitialStatus::penetrating},
+      {"closed", InitialStatus::closed}};
+  } // namespace
+
   // ------------------------------------------------------ Reference solution
   // --------------------------------------------------------------- Contact
   void
@@ -120,8 +135,7 @@ namespace Signorini
                       "contact.");
     prm.declare_entry("Integration rule",
                       "mortar",
-                      Patterns::Selection(
-                        "nodal|gauss|simpson|newton-cotes|mortar"),
+                      integration_rules.pattern(),
                       "Contact points on the slave faces (formulation.md 6): "
                       "nodal (the face nodes: trapezoid for Q1, Simpson for "
                       "Q2), gauss (Gauss-Legendre with 'Integration order' "
@@ -140,7 +154,7 @@ namespace Signorini
                       "Order of the gauss, simpson or newton-cotes rule.");
     prm.declare_entry("Initial status",
                       "penetrating",
-                      Patterns::Selection("open|penetrating|closed"),
+                      initial_statuses.pattern(),
                       "Status of the contact points at the first Newton "
                       "iteration of the run: open, closed where penetrating "
                       "or touching (g >= 0, to 1e-8 of the face size), or "
@@ -198,17 +212,9 @@ namespace Signorini
                                       const Counts &    counts)
   {
     prm.enter_subsection("Contact");
-    const std::string r = prm.get("Integration rule");
-    rule  = r == "nodal"   ? IntegrationRule::nodal :
-            r == "gauss"   ? IntegrationRule::gauss :
-            r == "simpson" ? IntegrationRule::simpson :
-            r == "mortar"  ? IntegrationRule::mortar :
-                             IntegrationRule::newton_cotes;
+    rule                = integration_rules.value(prm.get("Integration rule"));
     order               = prm.get_integer("Integration order");
-    const std::string i = prm.get("Initial status");
-    initial_status      = i == "open"        ? InitialStatus::open :
-                          i == "penetrating" ? InitialStatus::penetrating :
-                                               InitialStatus::closed;
+    initial_status      = initial_statuses.value(prm.get("Initial status"));
     newton_geometry = prm.get("Geometric linearisation") != "fixed point";
     newton_geometry_all =
       prm.get("Geometric linearisation") == "newton";

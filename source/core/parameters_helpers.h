@@ -7,7 +7,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
+#include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace Signorini
@@ -39,6 +41,46 @@ namespace Signorini
     {
       return Patterns::List(Patterns::Double(), min, 3, ",");
     }
+
+    /**
+     * The names and values of one selection entry: its pattern and its
+     * parsing come from the one list, so that a name cannot be accepted
+     * by the pattern and then read as another value.
+     */
+    template <typename Enum>
+    class SelectionTable
+    {
+    public:
+      SelectionTable(
+        std::initializer_list<std::pair<const char *, Enum>> entries)
+          : entries(entries.begin(), entries.end())
+      {
+      }
+
+      /** "a|b|c", in the order of the table. */
+      Patterns::Selection
+      pattern() const
+      {
+        std::string names;
+        for (const auto &[name, value] : entries)
+          names += (names.empty() ? "" : "|") + name;
+        return Patterns::Selection(names);
+      }
+
+      /** The value of @p name (the pattern has accepted it). */
+      Enum
+      value(const std::string &name) const
+      {
+        for (const auto &[n, v] : entries)
+          if (n == name)
+            return v;
+        AssertThrow(false, ExcMessage("'" + name + "' is not in the table."));
+        return entries.front().second;
+      }
+
+    private:
+      std::vector<std::pair<std::string, Enum>> entries;
+    };
 
     inline unsigned int
     component_index(const std::string &name)
