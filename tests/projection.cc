@@ -639,93 +639,6 @@ namespace
         check_rigid_derivatives<3>("level set (exact)", exact, p, 1e-8);
       }
   }
-
-  /**
-   * face_projection_derivatives against central differences of
-   * project_onto_face: d xi and d n with respect to the point and to
-   * every support point, relative to the largest entry, to 1e-7.
-   */
-  template <int dim>
-  void
-  check_derivatives(const std::string &            name,
-                    const std::vector<Point<dim>> &X,
-                    const Point<dim> &             inside,
-                    const Point<dim> &             p)
-  {
-    const auto proj = project_onto_face(p, X, inside, 1e-8, 100);
-    AssertThrow(proj.converged, ExcMessage(name + ": no projection"));
-    const auto   d = face_projection_derivatives(p, X, proj.xi, proj.normal);
-    const double h = 1e-6 * diameter(X);
-    double       error = 0., size = 0.;
-    // Compares one column (perturbation of coordinate j of point k, k = -1
-    // for p) with its analytic derivatives.
-    const auto compare = [&](const int k, const unsigned int j) {
-      std::array<FaceProjection<dim>, 2> r;
-      for (unsigned int s = 0; s < 2; ++s)
-        {
-          std::vector<Point<dim>> Xs = X;
-          Point<dim>              ps = p;
-          (k < 0 ? ps : Xs[k])[j] += (s == 0 ? h : -h);
-          r[s] = project_onto_face(ps, Xs, inside, 1e-8, 100);
-        }
-      for (unsigned int a = 0; a < dim - 1; ++a)
-        {
-          const double fd    = (r[0].xi[a] - r[1].xi[a]) / (2 * h);
-          const double exact = k < 0 ? d.dxi_dp[a][j] : d.dxi_dX[k][a][j];
-          error = std::max(error, std::abs(fd - exact));
-          size  = std::max(size, std::abs(exact));
-        }
-      for (unsigned int i = 0; i < dim; ++i)
-        {
-          const double fd    = (r[0].normal[i] - r[1].normal[i]) / (2 * h);
-          const double exact = k < 0 ? d.dn_dp[i][j] : d.dn_dX[k][i][j];
-          error = std::max(error, std::abs(fd - exact));
-          size  = std::max(size, std::abs(exact));
-        }
-    };
-    for (unsigned int j = 0; j < dim; ++j)
-      {
-        compare(-1, j);
-        for (unsigned int k = 0; k < X.size(); ++k)
-          compare(k, j);
-      }
-    verdict(name + " projection derivatives (relative)", error / size, 1e-7);
-  }
-
-  void
-  test_derivatives()
-  {
-    deallog << "--- derivatives of the projection" << std::endl;
-    check_derivatives<2>("Q1 segment",
-                         {Point<2>(0., 0.), Point<2>(1., 0.2)},
-                         Point<2>(0.5, -1.),
-                         Point<2>(0.3, 0.4));
-    check_derivatives<2>("Q2 arc",
-                         {Point<2>(-1., 0.), Point<2>(1., 0.), Point<2>(0.1, 0.5)},
-                         Point<2>(0., -1.),
-                         Point<2>(0.3, 0.2));
-    check_derivatives<3>("Q1 warped quad",
-                         {Point<3>(0., 0., 0.),
-                          Point<3>(1., 0., 0.1),
-                          Point<3>(0., 1., -0.1),
-                          Point<3>(1.1, 1., 0.2)},
-                         Point<3>(0.5, 0.5, -1.),
-                         Point<3>(0.4, 0.3, 0.3));
-    std::vector<Point<3>> X;
-    for (unsigned int k = 0; k < 9; ++k)
-      {
-        // FE_Q<2>(2) node order: 1D nodes (0, 1, 1/2) per direction.
-        const double node[3] = {0., 1., 0.5};
-        const unsigned int a[9] = {0, 1, 0, 1, 0, 1, 2, 2, 2};
-        const unsigned int b[9] = {0, 0, 1, 1, 2, 2, 0, 1, 2};
-        const double x = node[a[k]], y = node[b[k]];
-        X.emplace_back(x, y, 0.3 * (x * x + 0.5 * y * y) + 0.1 * x * y);
-      }
-    check_derivatives<3>("Q2 curved quad",
-                         X,
-                         Point<3>(0.5, 0.5, -1.),
-                         Point<3>(0.6, 0.35, 0.5));
-  }
 } // namespace
 
 
@@ -745,7 +658,6 @@ main()
   test_outside();
   test_rigid();
   test_rigid_derivatives();
-  test_derivatives();
 
   deallog << "OK" << std::endl;
   std::cout << "all checks passed" << std::endl;

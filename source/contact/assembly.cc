@@ -29,7 +29,6 @@ namespace Signorini
       ContactStatistics stats;
       // Normal status per node (decided before the point loop: a node's
       // status needs the points of all its faces).
-      update_projections(state);
       if (any_node_status)
         {
           stats.n_changed +=
@@ -72,7 +71,7 @@ namespace Signorini
           for (unsigned int a = 0; a < e.n_e + e.n_m; ++a)
             add_entry(contact_force, dofs[a], -F[a]);
           if (matrix)
-            local_jacobian(point, state, e, K);
+            local_jacobian(point, e, K);
 
           if (static_cast<int>(point.face) != group_face ||
               point.master_face != group_master)
@@ -156,9 +155,9 @@ namespace Signorini
               s.Lambda[k] +=
                 psi[l] * state[face.friction_dofs[l * (dim - 1) + k]];
         }
-      // Newton on the geometry of a rigid obstacle: projection, normal and
-      // tangents of the current iterate, and dn/du for the Jacobian (added
-      // after the law below).
+      // Newton on the geometry of a frictionless rigid obstacle: the
+      // projection and normal of the current iterate, and dn/du for the
+      // Jacobian (added after the law below).
       e.geometry_newton = newton_geometry_pair[p] && point.paired;
       if (e.geometry_newton)
         {
@@ -166,17 +165,7 @@ namespace Signorini
           point.normal    = proj.normal;
           point.x_m_rigid = proj.x_m;
           point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);
-          e.dn_du        = proj.dnormal;
-          e.dslip_du     = proj.dclosest;
-          // Slip on the obstacle's surface: the closest point now against
-          // that of the step-start position carried with the obstacle (a
-          // normal approach is no slip, whatever n does).
-          e.surface_slip =
-            proj.x_m -
-            obstacles[p]
-              ->project(obstacles[p]->get_motion().apply(
-                motion_at_start[p].inverse(e.x_e - e.du_e)))
-              .x_m;
+          e.dn_du         = proj.dnormal;
         }
       s.normal   = point.normal;
       s.tangents = point.tangents;
@@ -203,7 +192,7 @@ namespace Signorini
           (e.x_e - x_m) * s.normal + parameters.contact.pairs[p].gap_offset;
       else
         s.gap = -1e30; // no master in reach: free
-      s.slip = e.geometry_newton ? e.surface_slip : e.du_e - du_m;
+      s.slip = e.du_e - du_m;
       s.slip -= (s.slip * s.normal) * s.normal;
 
       s.freeze_contact        = point.freeze_contact;
@@ -254,9 +243,10 @@ namespace Signorini
             for (unsigned int k = 0; k < dim - 1; ++k)
               e.r.force += -e.law.mu * psi_c[l] * e.node_data[l].lambda *
                            e.node_data[l].Lambda[k] * s.tangents[k];
+      // The force f = (f . n) n turns with the normal (curvature); the
+      // gap needs nothing more: at the closest point dg/du = n exactly.
       if (e.geometry_newton)
-        add_geometric_derivatives(
-          e.r, s, e.surface_slip, e.dslip_du, e.dn_du, point.tangent_axis);
+        e.r.dforce_dd += (e.r.force * s.normal) * e.dn_du;
     }
 
 

@@ -100,67 +100,6 @@ namespace Signorini
     }
 
 
-    template <int dim>
-    std::array<Tensor<2, dim>, dim - 1>
-    tangent_basis_derivative(const Tensor<1, dim> &n,
-                             const Tensor<2, dim> &dn,
-                             const unsigned int    axis)
-    {
-      std::array<Tensor<2, dim>, dim - 1> dt;
-      if constexpr (dim == 2)
-        {
-          (void)n;
-          (void)axis;
-          for (unsigned int m = 0; m < dim; ++m)
-            {
-              dt[0][0][m] = dn[1][m];
-              dt[0][1][m] = -dn[0][m];
-            }
-        }
-      else
-        {
-          // c = n x e, tau_1 = c / |c|, tau_2 = n x tau_1.
-          Tensor<1, dim> e;
-          e[axis]                  = 1.;
-          const Tensor<1, dim> c   = cross_product_3d(n, e);
-          const double         nc  = c.norm();
-          const Tensor<1, dim> t1  = c / nc;
-          Tensor<2, dim>       dc; // dc_i/dp_m = eps_ijk dn_jm e_k
-          for (unsigned int m = 0; m < dim; ++m)
-            {
-              Tensor<1, dim> dn_m;
-              for (unsigned int j = 0; j < dim; ++j)
-                dn_m[j] = dn[j][m];
-              const Tensor<1, dim> col = cross_product_3d(dn_m, e);
-              for (unsigned int i = 0; i < dim; ++i)
-                dc[i][m] = col[i];
-            }
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int m = 0; m < dim; ++m)
-              {
-                double v = dc[i][m];
-                for (unsigned int j = 0; j < dim; ++j)
-                  v -= t1[i] * t1[j] * dc[j][m];
-                dt[0][i][m] = v / nc;
-              }
-          for (unsigned int m = 0; m < dim; ++m)
-            {
-              Tensor<1, dim> dn_m, dt1_m;
-              for (unsigned int j = 0; j < dim; ++j)
-                {
-                  dn_m[j]  = dn[j][m];
-                  dt1_m[j] = dt[0][j][m];
-                }
-              const Tensor<1, dim> col =
-                cross_product_3d(dn_m, t1) + cross_product_3d(n, dt1_m);
-              for (unsigned int i = 0; i < dim; ++i)
-                dt[1][i][m] = col[i];
-            }
-        }
-      return dt;
-    }
-
-
 
     namespace
     {
@@ -383,45 +322,6 @@ namespace Signorini
     }
 
 
-    template <int dim>
-    void
-    add_geometric_derivatives(PointResponse<dim> &   r,
-                              const PointState<dim> &s,
-                              const Tensor<1, dim> & slip,
-                              const Tensor<2, dim> & dslip,
-                              const Tensor<2, dim> & dn,
-                              const unsigned int     axis)
-    {
-      const auto &n  = s.normal;
-      const auto &T  = s.tangents;
-      const auto  dT = tangent_basis_derivative(n, dn, axis);
-      // q_j = d (tau_j . slip) / dd minus the tau_j the law used.
-      std::array<Tensor<1, dim>, dim - 1> q;
-      for (unsigned int j = 0; j < dim - 1; ++j)
-        for (unsigned int m = 0; m < dim; ++m)
-          {
-            q[j][m] = -T[j][m];
-            for (unsigned int i = 0; i < dim; ++i)
-              q[j][m] += slip[i] * dT[j][i][m] + T[j][i] * dslip[i][m];
-          }
-      Tensor<2, dim> G = (r.force * n) * dn;
-      Tensor<1, dim> G_rc;
-      std::array<Tensor<1, dim>, dim - 1> G_rf;
-      for (unsigned int j = 0; j < dim - 1; ++j)
-        {
-          G += (r.force * T[j]) * dT[j];
-          G += outer_product(r.dforce_dd * T[j], q[j]);
-          G_rc += (r.drc_dd * T[j]) * q[j];
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            G_rf[k] += (r.drf_dd[k] * T[j]) * q[j];
-        }
-      r.dforce_dd += G;
-      r.drc_dd += G_rc;
-      for (unsigned int k = 0; k < dim - 1; ++k)
-        r.drf_dd[k] += G_rf[k];
-    }
-
-
     // Explicit instantiations.
     template std::array<Tensor<1, 2>, 1>
     tangent_basis<2>(const Tensor<1, 2> &);
@@ -431,26 +331,7 @@ namespace Signorini
     tangent_basis<2>(const Tensor<1, 2> &, const unsigned int);
     template std::array<Tensor<1, 3>, 2>
     tangent_basis<3>(const Tensor<1, 3> &, const unsigned int);
-    template std::array<Tensor<2, 2>, 1>
-    tangent_basis_derivative<2>(const Tensor<1, 2> &,
-                                const Tensor<2, 2> &,
-                                const unsigned int);
-    template std::array<Tensor<2, 3>, 2>
-    tangent_basis_derivative<3>(const Tensor<1, 3> &,
-                                const Tensor<2, 3> &,
-                                const unsigned int);
-    template void add_geometric_derivatives<2>(PointResponse<2> &,
-                                               const PointState<2> &,
-                                               const Tensor<1, 2> &,
-                                               const Tensor<2, 2> &,
-                                               const Tensor<2, 2> &,
-                                               const unsigned int);
-    template void add_geometric_derivatives<3>(PointResponse<3> &,
-                                               const PointState<3> &,
-                                               const Tensor<1, 3> &,
-                                               const Tensor<2, 3> &,
-                                               const Tensor<2, 3> &,
-                                               const unsigned int);
+
     template std::array<Tensor<1, 3>, 2>
     tangent_basis<3>(const Tensor<1, 3> &);
 

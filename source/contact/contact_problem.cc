@@ -75,25 +75,17 @@ namespace Signorini
                                        pair.friction > 0);
           any_friction_node = any_friction_node || friction_node_pair.back();
           any_node_status   = any_node_status || node_status_pair.back();
-          // Newton on the geometry: rigid obstacles with their own normal.
-          newton_geometry_pair.push_back(
-            contact.newton_geometry &&
-            (pair.friction == 0 || contact.newton_geometry_all) &&
-            !pair.master_is_body());
-          // Newton on the pairing of a meshed master ('newton' only; auto
-          // keeps the fixed point, doc/robustness.md): frictionless (the
-          // slip of a meshed pair is not linearised in the geometry),
-          // fixed points (the mortar rule cuts faces at each pairing).
-          newton_pairing_pair.push_back(contact.newton_geometry_all &&
-                                        pair.friction == 0 &&
-                                        pair.master_is_body() && !mortar);
+          // Newton on the geometry (projection, normal and curvature at
+          // every iterate) for frictionless rigid obstacles; the geometric
+          // loop for the others (doc/robustness.md, "Geometry in Newton").
+          newton_geometry_pair.push_back(pair.friction == 0 &&
+                                         !pair.master_is_body());
           pairing_exact =
             (p == 0 || pairing_exact) && newton_geometry_pair.back();
           // A frictionless meshed master paired at fixed points and
           // normals within each Newton solve.
-          const bool frictionless_fixed_body = pair.friction == 0 &&
-                                               pair.master_is_body() &&
-                                               !newton_pairing_pair.back();
+          const bool frictionless_fixed_body =
+            pair.friction == 0 && pair.master_is_body();
           linear_statuses =
             (p == 0 || linear_statuses) &&
             (frictionless_fixed_body ||

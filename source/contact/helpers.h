@@ -92,11 +92,9 @@ namespace Signorini
       const MasterFace *master = nullptr;
       unsigned int      n_m    = 0;
 
-      // Newton on the geometry of a rigid obstacle: dn/du, dx^m/du and
-      // the slip on the obstacle's surface.
+      // Newton on the geometry of a frictionless rigid obstacle: dn/du.
       bool           geometry_newton = false;
-      Tensor<2, dim> dn_du, dslip_du;
-      Tensor<1, dim> surface_slip;
+      Tensor<2, dim> dn_du;
 
       PointState<dim>    s;
       double             lambda_shown = 0; // lambda with psi (output)

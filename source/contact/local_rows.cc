@@ -100,11 +100,9 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::local_jacobian(
-      const ContactPoint                  &point,
-      const TrilinosWrappers::MPI::Vector &state,
-      const PointEvaluation               &e,
-      FullMatrix<double>                  &K) const
+    ContactProblem<dim>::local_jacobian(const ContactPoint    &point,
+                                        const PointEvaluation &e,
+                                        FullMatrix<double>    &K) const
     {
       const unsigned int p     = slave_faces[point.face].pair;
       const auto        &r     = e.r;
@@ -138,8 +136,6 @@ namespace Signorini
                 }
             }
         }
-      if (point.reprojected)
-        add_reprojection_jacobian(point, state, e, K);
       for (unsigned int l = 0; l < n_l; ++l)
         for (unsigned int m = 0; m < n_l; ++m)
           {
@@ -157,50 +153,6 @@ namespace Signorini
               }
           }
       add_node_friction_jacobian(point, e, K);
-    }
-
-
-    template <int dim>
-    void
-    ContactProblem<dim>::add_reprojection_jacobian(
-      const ContactPoint                  &point,
-      const TrilinosWrappers::MPI::Vector &state,
-      const PointEvaluation               &e,
-      FullMatrix<double>                  &K) const
-    {
-      // Newton on the pairing of a meshed master: the force f = (f . n) n
-      // turns with n, and the master rows follow N_m(xi_m); the gap needs
-      // nothing more (at the closest point, dg = n . (du^e - N_m du^m)
-      // exactly).
-      std::vector<Point<dim>> x_face;
-      Point<dim>              inside;
-      master_face_position(point.master_face, state, x_face, inside);
-      const auto D = face_projection_derivatives<dim>(e.x_e,
-                                                      x_face,
-                                                      point.xi_m,
-                                                      e.s.normal);
-      const unsigned int n_e = e.n_e, n_u = e.n_e + e.n_m;
-      const double       w   = point.weight;
-      const double       phi = e.r.force * e.s.normal;
-      for (unsigned int j = 0; j < n_u; ++j)
-        {
-          // Column j: slave DoF j (moves x_e by N_e e_c) or component c of
-          // master support point k.
-          const unsigned int c = e.comp[j];
-          Tensor<1, dim>     dn;
-          Tensor<1, dim - 1> dxi;
-          const unsigned int k = j < n_e ? 0 : (j - n_e) / dim;
-          for (unsigned int i = 0; i < dim; ++i)
-            dn[i] = j < n_e ? e.N_e[j] * D.dn_dp[i][c] : D.dn_dX[k][i][c];
-          for (unsigned int a = 0; a < dim - 1; ++a)
-            dxi[a] = j < n_e ? e.N_e[j] * D.dxi_dp[a][c] : D.dxi_dX[k][a][c];
-          for (unsigned int a = 0; a < n_u; ++a)
-            {
-              const double dNd = a < n_e ? 0. : -(D.dN[(a - n_e) / dim] * dxi);
-              K(a, j) += w * (dNd * e.r.force[e.comp[a]] +
-                              e.Nd[a] * phi * dn[e.comp[a]]);
-            }
-        }
     }
 
 

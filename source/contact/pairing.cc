@@ -403,35 +403,6 @@ namespace Signorini
     }
 
 
-    template <int dim>
-    void
-    ContactProblem<dim>::update_projections(
-      const TrilinosWrappers::MPI::Vector &state)
-    {
-      std::vector<Point<dim>> x_face;
-      Point<dim>              inside;
-      for (auto &point : points)
-        {
-          point.reprojected = false;
-          if (!newton_pairing_pair[slave_faces[point.face].pair] ||
-              !point.paired || point.master_face < 0)
-            continue;
-          master_face_position(point.master_face, state, x_face, inside);
-          const auto proj =
-            project_onto_face(slave_position(point, state), x_face, inside);
-          // Off the face (beyond the projection tolerance): the pairing's
-          // projection stays, frozen, until the next pairing finds the
-          // point's new face.
-          if (!proj.converged ||
-              proj.violation > parameters.contact.projection_tolerance)
-            continue;
-          point.reprojected = true;
-          take_projection(point, proj);
-          point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);
-        }
-    }
-
-
     template class ContactProblem<2>;
     template class ContactProblem<3>;
   } // namespace Contact

@@ -301,126 +301,6 @@ namespace Signorini
 
 
     template <int dim>
-    FaceProjectionDerivatives<dim>
-    face_projection_derivatives(const Point<dim> &             p,
-                                const std::vector<Point<dim>> &face_points,
-                                const Point<dim - 1> &         xi,
-                                const Tensor<1, dim> &         normal)
-    {
-      const unsigned int n_points = face_points.size();
-      const unsigned int degree   = face_degree<dim>(n_points);
-      const FaceMapValues<dim> v  = evaluate_face_map(face_points, xi);
-      const Tensor<1, dim>     r  = p - v.x;
-
-      FaceProjectionDerivatives<dim> d;
-      d.N.resize(n_points);
-      d.dN.resize(n_points);
-      const Lagrange1D lx = lagrange_1d(degree, xi[0]);
-      if constexpr (dim == 2)
-        for (unsigned int k = 0; k < n_points; ++k)
-          {
-            d.N[k]     = lx.v[k];
-            d.dN[k][0] = lx.d[k];
-          }
-      else
-        {
-          const Lagrange1D ly = lagrange_1d(degree, xi[1]);
-          for (unsigned int k = 0; k < n_points; ++k)
-            {
-              const unsigned int a = quad_a[k], b = quad_b[k];
-              d.N[k]     = lx.v[a] * ly.v[b];
-              d.dN[k][0] = lx.d[a] * ly.v[b];
-              d.dN[k][1] = lx.v[a] * ly.d[b];
-            }
-        }
-
-      Tensor<2, dim - 1> H;
-      for (unsigned int a = 0; a < dim - 1; ++a)
-        for (unsigned int b = 0; b < dim - 1; ++b)
-          H[a][b] = v.a[a] * v.a[b] - r * v.a2[a][b];
-      // Not a minimum of the distance (a far point over a curved face):
-      // the first-order part a . a, as project_onto_face does there.
-      if (!positive_definite(H))
-        for (unsigned int a = 0; a < dim - 1; ++a)
-          for (unsigned int b = 0; b < dim - 1; ++b)
-            H[a][b] = v.a[a] * v.a[b];
-      const Tensor<2, dim - 1> Hinv = invert(H);
-
-      // The unnormalised normal c (a_0 turned in 2D, a_0 x a_1 in 3D) and
-      // the sign s with n = s c / |c|.
-      Tensor<1, dim> c;
-      if constexpr (dim == 2)
-        {
-          c[0] = v.a[0][1];
-          c[1] = -v.a[0][0];
-        }
-      else
-        c = cross_product_3d(v.a[0], v.a[1]);
-      const double s     = (c * normal) >= 0 ? 1. : -1.;
-      const double c_abs = c.norm();
-      // dn for a change da of the tangents.
-      const auto dnormal = [&](const std::array<Tensor<1, dim>, dim - 1> &da) {
-        Tensor<1, dim> dc;
-        if constexpr (dim == 2)
-          {
-            dc[0] = da[0][1];
-            dc[1] = -da[0][0];
-          }
-        else
-          dc = cross_product_3d(da[0], v.a[1]) +
-               cross_product_3d(v.a[0], da[1]);
-        return (s / c_abs) * (dc - (dc * normal) * normal);
-      };
-      // Column j of the derivatives for a right-hand side b of H dxi = b
-      // and the explicit part da0 of da.
-      const auto column = [&](const Tensor<1, dim - 1> &                 b,
-                              const std::array<Tensor<1, dim>, dim - 1> &da0,
-                              Tensor<1, dim - 1> &                       dxi,
-                              Tensor<1, dim> &                           dn) {
-        dxi = Hinv * b;
-        std::array<Tensor<1, dim>, dim - 1> da = da0;
-        for (unsigned int a = 0; a < dim - 1; ++a)
-          for (unsigned int bb = 0; bb < dim - 1; ++bb)
-            da[a] += dxi[bb] * v.a2[a][bb];
-        dn = dnormal(da);
-      };
-
-      d.dxi_dX.resize(n_points);
-      d.dn_dX.resize(n_points);
-      for (unsigned int j = 0; j < dim; ++j)
-        {
-          Tensor<1, dim - 1>                  b, dxi;
-          Tensor<1, dim>                      dn;
-          std::array<Tensor<1, dim>, dim - 1> da0{};
-          // The point p moves along e_j.
-          for (unsigned int a = 0; a < dim - 1; ++a)
-            b[a] = v.a[a][j];
-          column(b, da0, dxi, dn);
-          for (unsigned int a = 0; a < dim - 1; ++a)
-            d.dxi_dp[a][j] = dxi[a];
-          for (unsigned int i = 0; i < dim; ++i)
-            d.dn_dp[i][j] = dn[i];
-          // Support point k moves along e_j.
-          for (unsigned int k = 0; k < n_points; ++k)
-            {
-              for (unsigned int a = 0; a < dim - 1; ++a)
-                {
-                  b[a]      = -d.N[k] * v.a[a][j] + d.dN[k][a] * r[j];
-                  da0[a]    = Tensor<1, dim>();
-                  da0[a][j] = d.dN[k][a];
-                }
-              column(b, da0, dxi, dn);
-              for (unsigned int a = 0; a < dim - 1; ++a)
-                d.dxi_dX[k][a][j] = dxi[a];
-              for (unsigned int i = 0; i < dim; ++i)
-                d.dn_dX[k][i][j] = dn[i];
-            }
-        }
-      return d;
-    }
-
-
-    template <int dim>
     LineIntersection<dim>
     intersect_line_with_face(const std::vector<Point<dim>> &face_points,
                              const Point<dim> &             p,
@@ -479,12 +359,7 @@ namespace Signorini
   template void face_shape_values<dim>(                                   \
     const unsigned int, const Point<dim - 1> &, std::vector<double> &);    \
   template FaceGeometry<dim> face_geometry<dim>(                          \
-    const std::vector<Point<dim>> &, const Point<dim - 1> &);              \
-  template FaceProjectionDerivatives<dim>                                  \
-  face_projection_derivatives<dim>(const Point<dim> &,                     \
-                                   const std::vector<Point<dim>> &,        \
-                                   const Point<dim - 1> &,                 \
-                                   const Tensor<1, dim> &);
+    const std::vector<Point<dim>> &, const Point<dim - 1> &);
 
     SIGNORINI_INSTANTIATE(2)
     SIGNORINI_INSTANTIATE(3)

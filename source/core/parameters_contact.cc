@@ -161,24 +161,6 @@ namespace Signorini
                       "all closed (holds bodies that only "
                       "contact supports; open points are released by "
                       "Newton).");
-    prm.declare_entry("Geometric linearisation",
-                      "auto",
-                      Patterns::Selection("auto|fixed point|newton"),
-                      "Rigid obstacles: the projection, normal and tangents "
-                      "frozen within each geometric iteration (fixed point, "
-                      "formulation.md 7) or updated at every Newton iterate "
-                      "with their derivatives in the Jacobian (newton: the "
-                      "curvature of a ball or cylinder no longer costs "
-                      "geometric iterations). auto: newton for frictionless "
-                      "rigid pairs, fixed point for frictional ones (with "
-                      "friction the rotating normal makes the stick/slip "
-                      "search harder, doc/robustness.md) and for meshed "
-                      "masters. newton: also frictional rigid pairs, and "
-                      "frictionless meshed masters (except the mortar "
-                      "rule): each point projected again onto its master "
-                      "face at every iterate, with the derivatives of the "
-                      "projection in the Jacobian; the geometric loop only "
-                      "changes faces.");
     prm.declare_entry("Projection tolerance",
                       "0.05",
                       Patterns::Double(0),
@@ -215,9 +197,6 @@ namespace Signorini
     rule                = integration_rules.value(prm.get("Integration rule"));
     order               = prm.get_integer("Integration order");
     initial_status      = initial_statuses.value(prm.get("Initial status"));
-    newton_geometry = prm.get("Geometric linearisation") != "fixed point";
-    newton_geometry_all =
-      prm.get("Geometric linearisation") == "newton";
     projection_tolerance     = prm.get_double("Projection tolerance");
     geometric_tolerance      = prm.get_double("Geometric tolerance");
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");

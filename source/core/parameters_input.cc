@@ -289,7 +289,11 @@ namespace Signorini
          "the mortar rule always uses the order exact for flat faces."},
         {"Normal",
          "the contact normal is always the master's (the slave and average "
-         "normals failed action = reaction and gap checks)."}};
+         "normals failed action = reaction and gap checks)."},
+        {"Geometric linearisation",
+         "frictionless rigid obstacles are always linearised in Newton "
+         "(projection, normal and curvature at every iterate); frictional "
+         "pairs and meshed masters are paired again by the geometric loop."}};
       std::string hint;
       for (const auto &[name, instead] : removed)
         if (message.find("No entry with name <" + std::string(name) + ">") !=

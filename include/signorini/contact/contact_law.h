@@ -301,16 +301,6 @@ namespace Signorini
     std::array<Tensor<1, dim>, dim - 1>
     tangent_basis(const Tensor<1, dim> &n, const unsigned int axis);
 
-    /**
-     * Derivatives dtau_k/dp of the tangents of tangent_basis(n, axis) for a
-     * normal n(p) with derivative dn = dn/dp.
-     */
-    template <int dim>
-    std::array<Tensor<2, dim>, dim - 1>
-    tangent_basis_derivative(const Tensor<1, dim> &n,
-                             const Tensor<2, dim> &dn,
-                             const unsigned int    axis);
-
 
     /**
      * Evaluate the contact law at one point: statuses of sections 3.1-3.3,
@@ -322,25 +312,6 @@ namespace Signorini
     evaluate_contact_law(const PointState<dim> &state,
                          const LawParameters   &parameters);
 
-
-    /**
-     * Newton on the geometry of a rigid obstacle: adds to the derivatives
-     * with respect to d of a law response @p r (evaluated with n and T
-     * frozen at @p s) the terms from n(d) and T(n(d)), for a normal with
-     * derivative @p dn = dn/dd and tangents tangent_basis(n, @p axis).
-     * The law depends on n and T through force = a n + sum_k b_k tau_k and
-     * through T v, with v = P @p slip and d slip/dd = @p dslip (the law
-     * assumed I); the gap's derivative is n already (closest point). Exact
-     * except for points with a frozen slip direction (anti-cycling).
-     */
-    template <int dim>
-    void
-    add_geometric_derivatives(PointResponse<dim> &   r,
-                              const PointState<dim> &s,
-                              const Tensor<1, dim> & slip,
-                              const Tensor<2, dim> & dslip,
-                              const Tensor<2, dim> & dn,
-                              const unsigned int     axis);
 
 
     /**

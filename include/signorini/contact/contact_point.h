@@ -37,10 +37,7 @@ namespace Signorini
       bool           paired      = false;
       int            master_face = -1; // -1: rigid or unpaired
       std::vector<double> N_m;         // master shape values at xi_m
-      Point<dim - 1> xi_m;             // projection on the master face
-      // Projected again at the last evaluation (meshed master, Newton on
-      // the pairing): its derivatives enter the Jacobian.
-      bool reprojected = false;
+      Point<dim - 1>      xi_m;        // projection on the master face
       Tensor<1, dim> normal;
       std::array<Tensor<1, dim>, dim - 1> tangents;
       unsigned int   tangent_axis = 0; // 3D axis of T, fixed at pairing

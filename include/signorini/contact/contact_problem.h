@@ -719,15 +719,6 @@ namespace Signorini
       std::vector<double>
       dual_basis(const SlaveFace &face) const;
 
-      /**
-       * Meshed masters with 'Geometric linearisation = newton': projects
-       * every paired point again onto its master face at @p state (same
-       * face; the geometric loop changes faces) and updates xi_m, N_m and
-       * the normal. A projection that fails or leaves the face (beyond
-       * the projection tolerance) keeps the last one, frozen.
-       */
-      void
-      update_projections(const TrilinosWrappers::MPI::Vector &state);
 
       /** Takes the projection @p proj onto a master face as the point's:
        * xi_m, N_m(xi_m) and the normal. */
@@ -780,20 +771,11 @@ namespace Signorini
                      Vector<double> &                     F) const;
 
       /** The local Jacobian of an evaluated point: the law's derivatives,
-       * then those of the re-projection and of the node friction rows. */
+       * then those of the node friction rows. */
       void
-      local_jacobian(const ContactPoint &                 point,
-                     const TrilinosWrappers::MPI::Vector &state,
-                     const PointEvaluation &              e,
-                     FullMatrix<double> &                 K) const;
-
-      /** Newton on the pairing of a meshed master: the derivatives of the
-       * force direction and of N_m(xi_m) with the projection. */
-      void
-      add_reprojection_jacobian(const ContactPoint &                 point,
-                                const TrilinosWrappers::MPI::Vector &state,
-                                const PointEvaluation &              e,
-                                FullMatrix<double> &                 K) const;
+      local_jacobian(const ContactPoint    &point,
+                     const PointEvaluation &e,
+                     FullMatrix<double>    &K) const;
 
       /** The derivatives of the friction rows of a node-status pair, the
        * status of each node fixed. */
@@ -827,12 +809,8 @@ namespace Signorini
       std::vector<Obstacles::RigidMotion<dim>>             motion_at_start;
       std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
       std::vector<bool>   node_status_pair; // per pair
-      // 'Geometric linearisation = newton' on a rigid obstacle, per pair.
+      // Newton on the geometry, per pair: frictionless rigid obstacles.
       std::vector<bool> newton_geometry_pair;
-      // The same on a meshed master (frictionless, non-mortar): each point
-      // projected again onto its master face at every evaluation, with the
-      // derivatives of the projection in the Jacobian.
-      std::vector<bool> newton_pairing_pair;
       bool              pairing_exact = false; // see pairing_is_exact()
       bool linear_statuses   = false; // see linear_at_fixed_statuses()
       bool                any_node_status = false;

@@ -163,41 +163,6 @@ namespace Signorini
                   const Point<dim - 1> &         xi);
 
 
-    /**
-     * First derivatives of the closest-point projection of a point p onto
-     * a face with support points X_k (same node order as
-     * project_onto_face), at its solution xi with unit normal n (oriented
-     * as project_onto_face returns it). Differentiating the orthogonality
-     * (p - x(xi)) . a_alpha = 0 gives
-     *   H dxi = (dp - sum_k N_k dX_k) . a + r . sum_k dN_k dX_k,
-     *   H_ab = a_a . a_b - r . x_,ab,  r = p - x(xi),
-     * and the normal follows from da_a = sum_k N_k,a dX_k + x_,ab dxi_b:
-     * dn = (I - n n) d(a_0 turned) / |a_0| in 2D, (I - n n) d(a_0 x a_1) /
-     * |a_0 x a_1| in 3D, with the orientation of n. Used by the Newton
-     * linearisation of the pairing of meshed masters ('Geometric
-     * linearisation = newton', formulation.md 7). Where H is not positive
-     * definite (xi is no minimum of the distance) H = a . a is used.
-     */
-    template <int dim>
-    struct FaceProjectionDerivatives
-    {
-      std::vector<double>            N;  // N_k(xi)
-      std::vector<Tensor<1, dim - 1>> dN; // dN_k/dxi(xi)
-      // d xi_alpha / dp (one row per alpha) and dn_i / dp_j.
-      std::array<Tensor<1, dim>, dim - 1> dxi_dp;
-      Tensor<2, dim>                      dn_dp;
-      // The same with respect to the support point X_k, per k.
-      std::vector<std::array<Tensor<1, dim>, dim - 1>> dxi_dX;
-      std::vector<Tensor<2, dim>>                      dn_dX;
-    };
-
-    template <int dim>
-    FaceProjectionDerivatives<dim>
-    face_projection_derivatives(const Point<dim> &             p,
-                                const std::vector<Point<dim>> &face_points,
-                                const Point<dim - 1> &         xi,
-                                const Tensor<1, dim> &         normal);
-
 
   } // namespace Contact
 } // namespace Signorini

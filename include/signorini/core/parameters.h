@@ -317,11 +317,6 @@ namespace Signorini
     IntegrationRule                    rule;
     unsigned int                       order;
     InitialStatus                      initial_status;
-    // 'Geometric linearisation' for rigid obstacles: Newton on every rigid
-    // pair (newton), on the frictionless ones (auto), on none (fixed point).
-    // newton_geometry: 'auto' or 'newton'; newton_geometry_all: 'newton'
-    // explicitly (also frictional rigid pairs and meshed masters).
-    bool newton_geometry, newton_geometry_all;
     double                             projection_tolerance;
     double                             geometric_tolerance;
     unsigned int                       max_geometric_iterations;
