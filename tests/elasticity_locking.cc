@@ -54,7 +54,7 @@ namespace
             "-pi*sin(2*pi*x)*sin(pi*y)^2\n"
             "end\n"
             "subsection Output\n set Verbosity = quiet\n"
-            " set Write VTU = false\n set Write CSV = false\n"
+            " set Postprocessors = reference checks\n set Write CSV = false\n"
             " set Timing summary = false\nend\n";
     return text.str();
   }

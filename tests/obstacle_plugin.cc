@@ -181,7 +181,7 @@ namespace
             " set Contact force tolerance = 1e-8\n"
             " set Action-reaction tolerance = 1e-8\nend\n"
             "subsection Output\n set Verbosity = quiet\n"
-            " set Write VTU = false\n set Write CSV = false\n"
+            " set Postprocessors = reference checks\n set Write CSV = false\n"
             " set Timing summary = false\nend\n";
     return text.str();
   }

@@ -125,7 +125,7 @@ namespace
             " set Maximum contact pressure = 1e5\n"
             " set Pressure tolerance = 1e-8\nend\n"
             "subsection Output\n set Verbosity = quiet\n"
-            " set Write VTU = false\n set Write CSV = false\n"
+            " set Write CSV = false\n"
             " set Timing summary = false\n"
             " set Postprocessors = reference checks, pressure resultant\n"
             " subsection Pressure resultant\n  set Expected resultant = "

@@ -646,10 +646,6 @@ namespace Signorini
                       Patterns::DirectoryName(),
                       "Directory for VTU/PVTU, CSV and the echoed parameter "
                       "file; created if missing.");
-    prm.declare_entry("Write VTU",
-                      "true",
-                      Patterns::Bool(),
-                      "Write a VTU/PVTU solution file per load step.");
     prm.declare_entry("Write CSV",
                       "true",
                       Patterns::Bool(),
@@ -673,7 +669,6 @@ namespace Signorini
   {
     prm.enter_subsection("Output");
     directory      = prm.get("Directory");
-    write_vtu      = prm.get_bool("Write VTU");
     write_csv      = prm.get_bool("Write CSV");
     timing_summary = prm.get_bool("Timing summary");
     verbosity      = verbosities.value(prm.get("Verbosity"));

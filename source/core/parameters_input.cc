@@ -290,6 +290,10 @@ namespace Signorini
         {"Normal",
          "the contact normal is always the master's (the slave and average "
          "normals failed action = reaction and gap checks)."},
+        {"Write VTU",
+         "the VTU files are written by the postprocessor 'visualization': "
+         "list it in 'Output/Postprocessors' (it is in the default list) or "
+         "leave it out."},
         {"Geometric linearisation",
          "frictionless rigid obstacles are always linearised in Newton "
          "(projection, normal and curvature at every iterate); frictional "

@@ -154,101 +154,6 @@ namespace Signorini
   }
 
 
-  template <int dim>
-  void
-  Simulation<dim>::output_results(const unsigned int step, const double time)
-  {
-    if (!parameters.output.write_vtu)
-      return;
-    TimerOutput::Scope t(timer, "output");
-    DoFHandler<dim>    scalar_dofs(triangulation); // contact fields
-    DataOut<dim>       data_out;
-    data_out.attach_dof_handler(dof_handler);
-    std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(dim,
-                     DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(solution,
-                             std::vector<std::string>(dim, "displacement"),
-                             DataOut<dim>::type_dof_data,
-                             interpretation);
-    Postprocess::StressPostprocessor<dim> stress(
-      mapping,
-      materials,
-      parameters.axisymmetric,
-      parameters.projected_volumetric_strain ? &fe : nullptr,
-      &solution);
-    data_out.add_data_vector(solution, stress);
-    Vector<float> material_id(triangulation.n_active_cells());
-    Vector<float> subdomain(triangulation.n_active_cells());
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          material_id(cell->active_cell_index()) = cell->material_id();
-          subdomain(cell->active_cell_index()) = cell->subdomain_id();
-        }
-    data_out.add_data_vector(material_id, "material_id");
-    data_out.add_data_vector(subdomain, "subdomain");
-    // Contact fields at the slave nodes (zero elsewhere).
-    std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>> fields;
-    if (contact->active())
-      {
-        scalar_dofs.distribute_dofs(fe.base_element(0));
-        fields = contact->nodal_fields(scalar_dofs);
-        for (const auto &[name, vector] : fields)
-          data_out.add_data_vector(scalar_dofs, vector, name);
-      }
-    data_out.build_patches(mapping, fe.degree);
-    write_solution_files(data_out, step, time);
-  }
-
-
-  // The names of DataOut::write_vtu_with_pvtu_record(), which writes in
-  // place and leaves a truncated file behind a kill or a full disk: here
-  // every file goes through a temporary name, each rank's piece first,
-  // then (rank 0, once every piece is in place) the step's PVTU record,
-  // then the PVD list, which so names complete steps only.
-  template <int dim>
-  void
-  Simulation<dim>::write_solution_files(const DataOut<dim> &data_out,
-                                        const unsigned int  step,
-                                        const double        time)
-  {
-    const unsigned int rank =
-      Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int n_ranks =
-      Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const unsigned int digits =
-      Utilities::needed_digits(std::max(0, static_cast<int>(n_ranks) - 1));
-    const std::string stem = "solution_" + Utilities::int_to_string(step, 4);
-    const auto        piece = [&](const unsigned int r) {
-      return stem + "." + Utilities::int_to_string(r, digits) + ".vtu";
-    };
-    const std::string directory = parameters.output.directory + "/";
-    check_output(Postprocess::write_atomically(
-      directory + piece(rank),
-      [&](std::ostream &out) { data_out.write_vtu(out); }));
-    std::string failure;
-    if (rank == 0)
-      {
-        std::vector<std::string> pieces;
-        for (unsigned int r = 0; r < n_ranks; ++r)
-          pieces.push_back(piece(r));
-        failure = Postprocess::write_atomically(
-          directory + stem + ".pvtu",
-          [&](std::ostream &out) { data_out.write_pvtu_record(out, pieces); });
-        if (failure.empty())
-          {
-            pvtu_records.emplace_back(time, stem + ".pvtu");
-            failure = Postprocess::write_atomically(
-              directory + "solution.pvd", [&](std::ostream &out) {
-                DataOutBase::write_pvd_record(out, pvtu_records);
-              });
-          }
-      }
-    check_output(failure);
-  }
-
-
   // The step's report on screen (iterations, reactions, pairs, reference
   // checks) and its statistics.csv line.
   template <int dim>
@@ -502,13 +407,9 @@ namespace Signorini
   void
   Simulation<dim>::check_output(const std::string &failure) const
   {
-    const std::string first =
-      Postprocess::first_failure(failure, mpi_communicator);
-    if (!first.empty())
-      throw RunError(first + ". The result files on disk are complete (up "
-                     "to the last step written); make room in '" +
-                     parameters.output.directory +
-                     "' or choose another 'Output/Directory'.");
+    Postprocess::check_written(failure,
+                               parameters.output.directory,
+                               mpi_communicator);
   }
 
 
@@ -569,7 +470,6 @@ namespace Signorini
     append_newton_history();
     const std::string statistics_lines =
       write_statistics(step, time, iterations);
-    output_results(step, time);
     if (contact->active() && parameters.output.write_csv)
       {
         std::ostringstream name;
@@ -591,8 +491,10 @@ namespace Signorini
   Simulation<dim>::run_postprocessors(const unsigned int step,
                                       const double       time)
   {
+    TimerOutput::Scope               t(timer, "output");
     const Postprocess::StepData<dim> data{step,
                                           time,
+                                          mpi_communicator,
                                           parameters,
                                           mapping,
                                           dof_handler,

@@ -1,5 +1,6 @@
 #include <deal.II/base/utilities.h>
 
+#include <signorini/core/errors.h>
 #include <signorini/postprocess/output_files.h>
 
 #include <cerrno>
@@ -179,6 +180,20 @@ namespace Signorini
                    all[rank] :
                    all[rank] + " (on rank " + std::to_string(rank) + ")";
       return "";
+    }
+
+
+    void
+    check_written(const std::string &local_failure,
+                  const std::string &directory,
+                  const MPI_Comm     comm)
+    {
+      const std::string first = first_failure(local_failure, comm);
+      if (!first.empty())
+        throw RunError(first +
+                       ". The result files on disk are complete (up "
+                       "to the last step written); make room in '" +
+                       directory + "' or choose another 'Output/Directory'.");
     }
 
 

@@ -19,7 +19,7 @@ status=0
 for k in 0 1; do
   { cat "$base"
     printf '%b\n' "${texts[$k]}"
-    printf 'subsection Output\n  set Directory = %s\n  set Write VTU = false\nend\n' "$dir/run$k"; } > "run$k.prm"
+    printf 'subsection Output\n  set Directory = %s\n  set Postprocessors = reference checks\nend\n' "$dir/run$k"; } > "run$k.prm"
   if ! "$exe" "run$k.prm" > "run$k.log" 2>&1; then
     tail -5 "run$k.log"; echo "FAIL: ${labels[$k]}: did not run to the end"; exit 1
   fi

@@ -9,7 +9,7 @@ set -u
 exe="$1"; prm="$2"
 dir="$(mktemp -d)"; trap 'rm -rf "$dir"' EXIT
 cd "$dir"
-{ cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = 2\nend\nsubsection Output\n  set Directory = .\n  set Write VTU = false\nend\n'; } > parameters.prm
+{ cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = 2\nend\nsubsection Output\n  set Directory = .\n  set Postprocessors = reference checks\nend\n'; } > parameters.prm
 cp parameters.prm original.prm
 mkdir other; ln -s ../parameters.prm other/link.prm; ln parameters.prm hard.prm
 status=0

@@ -4,6 +4,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <signorini/core/errors.h>
+
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -24,17 +26,6 @@
 namespace Signorini
 {
   using namespace dealii;
-
-  /**
-   * Everything a user can get wrong in the input ends in this exception; its
-   * message names the subsection/parameter and what to change. main() prints
-   * it once and exits non-zero.
-   */
-  class InputError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
 
   /** Counts of the numbered subsections, read before the strict parse. */
   struct Counts
@@ -218,7 +209,6 @@ namespace Signorini
   struct OutputParameters
   {
     std::string directory;
-    bool        write_vtu;
     bool        write_csv;
     bool        timing_summary;
     Verbosity   verbosity;

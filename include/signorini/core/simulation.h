@@ -45,13 +45,6 @@ namespace Signorini
 
   using Solver::NewtonFailure;
 
-  /** A run that must stop (not a user input problem): says where and why. */
-  class RunError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
   /**
    * One run of a scene: owns mesh, DoFs and vectors and wires the bulk
    * assembler, the contact problem and the linear solver. Its members are
@@ -283,13 +276,6 @@ namespace Signorini
      * echoed, newton_history.csv started. */
     void
     prepare_output();
-    void
-    output_results(const unsigned int step, const double time);
-    /** The step's VTU pieces, its PVTU record and the PVD list. */
-    void
-    write_solution_files(const DataOut<dim> &data_out,
-                         const unsigned int  step,
-                         const double        time);
     /** Prints the step's statistics; returns its statistics.csv line. */
     std::string
     write_statistics(const unsigned int step,
@@ -423,7 +409,6 @@ namespace Signorini
     std::vector<Tensor<1, dim>>          dirichlet_displacement;
     std::vector<std::array<bool, dim>>   dirichlet_components;
     std::vector<std::string>                    statistics_header;
-    std::vector<std::pair<double, std::string>> pvtu_records;
     // Newton history for newton_history.csv: one row per iterate, and
     // where the iterate belongs (load step, target time, geometric
     // iteration); the rows not yet appended to the file.

@@ -69,6 +69,7 @@ namespace Signorini
     {
       unsigned int                         step;
       double                               time;
+      MPI_Comm                             mpi_communicator;
       const Parameters                    &parameters;
       const Mapping<dim>                  &mapping;
       const DoFHandler<dim>               &dof_handler; // displacement

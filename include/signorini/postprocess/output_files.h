@@ -121,6 +121,16 @@ namespace Signorini
     first_failure(const std::string &local_failure, const MPI_Comm comm);
 
     /**
+     * Collective: where a rank's write failed (@p local_failure not
+     * empty), throws RunError with the first failure, saying that the
+     * files on disk are complete and what to do about @p directory.
+     */
+    void
+    check_written(const std::string &local_failure,
+                  const std::string &directory,
+                  const MPI_Comm     comm);
+
+    /**
      * Removes the files of an earlier run from @p directory: regular files
      * named like this program's results (solution_NNNN.R.vtu,
      * solution_NNNN.pvtu, solution.pvd, contact_NNNN.csv, statistics.csv,

@@ -1,0 +1,28 @@
+#ifndef signorini_core_errors_h
+#define signorini_core_errors_h
+
+#include <stdexcept>
+
+namespace Signorini
+{
+  /**
+   * Everything a user can get wrong in the input ends in this exception; its
+   * message names the subsection/parameter and what to change. main() prints
+   * it once and exits non-zero.
+   */
+  class InputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /** A run that must stop (not a user input problem): says where and why.
+   * main() prints it once and exits non-zero. */
+  class RunError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+} // namespace Signorini
+
+#endif
