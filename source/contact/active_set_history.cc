@@ -44,17 +44,17 @@ namespace Signorini
       node_kept.clear();
       for (auto &point : points)
         {
-          point.release          = false;
-          point.extrapolated     = false;
-          point.keep_closed      = false;
-          point.status_before    = point.status;
-          point.direction_before = point.slip_direction;
-          point.cycles           = 0;
-          point.changes          = 0;
-          point.refrozen         = false;
+          point.newton.release          = false;
+          point.newton.extrapolated     = false;
+          point.newton.keep_closed      = false;
+          point.newton.status_before    = point.status;
+          point.newton.direction_before = point.slip_direction;
+          point.newton.cycles           = 0;
+          point.newton.changes          = 0;
+          point.newton.refrozen         = false;
           // A status frozen by the geometric loop stays for the step.
-          point.was_frozen = point.geometric_freeze;
-          if (!point.geometric_freeze)
+          point.newton.was_frozen = point.geometric.frozen;
+          if (!point.geometric.frozen)
             clear_freeze(point);
         }
     }
@@ -66,14 +66,14 @@ namespace Signorini
     {
       for (auto &point : points)
         {
-          point.geo_status_1     = point.status;
-          point.geo_status_2     = point.status;
-          point.geo_direction_1  = point.slip_direction;
-          point.geo_direction_2  = point.slip_direction;
-          point.geometric_freeze = false;
-          point.geo_face_1       = -1;
-          point.geo_face_2       = -1;
-          point.pinned_face      = -1;
+          point.geometric.status_1    = point.status;
+          point.geometric.status_2    = point.status;
+          point.geometric.direction_1 = point.slip_direction;
+          point.geometric.direction_2 = point.slip_direction;
+          point.geometric.frozen      = false;
+          point.geometric.face_1      = -1;
+          point.geometric.face_2      = -1;
+          point.geometric.pinned_face = -1;
           clear_freeze(point);
         }
       pairings_in_step = 0;
@@ -92,28 +92,28 @@ namespace Signorini
           const auto       &dir    = point.slip_direction;
           // Same status as two pairings before (a slip in a direction not
           // turned against it), different from the last one (or reversed).
-          const bool same_as_2 =
-            status == point.geo_status_2 &&
-            (status != PointStatus::slip || dir * point.geo_direction_2 >= 0);
-          const bool differs_from_1 =
-            status != point.geo_status_1 ||
-            (status == PointStatus::slip && dir * point.geo_direction_1 < 0);
-          if (g >= 3 && !point.geometric_freeze && same_as_2 && differs_from_1)
+          const bool same_as_2 = status == point.geometric.status_2 &&
+                                 (status != PointStatus::slip ||
+                                  dir * point.geometric.direction_2 >= 0);
+          const bool differs_from_1 = status != point.geometric.status_1 ||
+                                      (status == PointStatus::slip &&
+                                       dir * point.geometric.direction_1 < 0);
+          if (g >= 3 && !point.geometric.frozen && same_as_2 && differs_from_1)
             {
               ++n;
-              point.geometric_freeze = true;
-              point.was_frozen       = true;
+              point.geometric.frozen  = true;
+              point.newton.was_frozen = true;
               freeze_for_cycle(point,
                                status,
                                dir,
-                               point.geo_status_1,
-                               point.geo_direction_1,
+                               point.geometric.status_1,
+                               point.geometric.direction_1,
                                true);
             }
-          point.geo_status_2    = point.geo_status_1;
-          point.geo_direction_2 = point.geo_direction_1;
-          point.geo_status_1    = status;
-          point.geo_direction_1 = dir;
+          point.geometric.status_2    = point.geometric.status_1;
+          point.geometric.direction_2 = point.geometric.direction_1;
+          point.geometric.status_1    = status;
+          point.geometric.direction_1 = dir;
         }
       return Utilities::MPI::sum(n, comm);
     }
@@ -125,22 +125,23 @@ namespace Signorini
     {
       unsigned int n = 0, again = 0;
       for (auto &point : points)
-        if (point.freeze_contact && !point.geometric_freeze)
+        if (point.newton.freeze_contact && !point.geometric.frozen)
           {
             // The first contradiction of a frozen point whose friction is
             // active: frozen once more, in the stick or slip status the
             // plain law asks for (released, it would enter its stick/slip
             // or reversal cycle again). Otherwise released.
-            if (!point.refrozen && point.plain_violated &&
-                point.plain_status != PointStatus::free &&
+            if (!point.newton.refrozen && point.newton.plain_violated &&
+                point.newton.plain_status != PointStatus::free &&
                 point.friction_active)
               {
                 ++again;
-                point.refrozen     = true;
-                point.freeze_stick = point.plain_status == PointStatus::stick;
-                point.frozen_slip_direction =
-                  point.plain_status == PointStatus::slip ?
-                    point.plain_direction :
+                point.newton.refrozen = true;
+                point.newton.freeze_stick =
+                  point.newton.plain_status == PointStatus::stick;
+                point.newton.frozen_slip_direction =
+                  point.newton.plain_status == PointStatus::slip ?
+                    point.newton.plain_direction :
                     Tensor<1, dim>();
               }
             else
@@ -231,16 +232,17 @@ namespace Signorini
           auto              &point = points[i];
           const unsigned int p     = slave_faces[point.face].pair;
           const bool         now   = point.status != PointStatus::free;
-          if (point.extrapolated && now)
-            point.keep_closed = true;
-          point.extrapolated = false;
+          if (point.newton.extrapolated && now)
+            point.newton.keep_closed = true;
+          point.newton.extrapolated = false;
           if (!node_status_pair[p])
             carriers[p].push_back(
               {point.x_ref,
-               Carrier::class_of(point.status_before != PointStatus::free, now),
+               Carrier::class_of(
+                 point.newton.status_before != PointStatus::free, now),
                static_cast<int>(i),
                0,
-               point.keep_closed || point.freeze_contact});
+               point.newton.keep_closed || point.newton.freeze_contact});
         }
       std::set<types::global_dof_index> seen;
       for (const auto &face : slave_faces)
@@ -341,8 +343,8 @@ namespace Signorini
           const Carrier &c = *candidate.first;
           if (c.point >= 0)
             {
-              points[c.point].release      = true;
-              points[c.point].extrapolated = true;
+              points[c.point].newton.release      = true;
+              points[c.point].newton.extrapolated = true;
               ++n_released;
             }
           else
@@ -361,7 +363,7 @@ namespace Signorini
     ContactProblem<dim>::clear_releases()
     {
       for (auto &point : points)
-        point.release = false;
+        point.newton.release = false;
       node_release.clear();
     }
 
@@ -410,7 +412,7 @@ namespace Signorini
       stats.n_changed += changed;
 
       // Anti-cycling (formulation.md 8), see start_newton_solve().
-      const bool frozen = point.freeze_contact && !e.by_node;
+      const bool frozen = point.newton.freeze_contact && !e.by_node;
       if (frozen)
         {
           // What the plain law says at this iterate.
@@ -424,10 +426,10 @@ namespace Signorini
           const bool violated = plain_status != status ||
                                 (status == PointStatus::slip &&
                                  rp.slip_direction * r.slip_direction < 0);
-          point.plain_status    = plain_status;
-          point.plain_direction = rp.slip_direction;
-          point.plain_violated  = violated;
-          if (point.geometric_freeze)
+          point.newton.plain_status    = plain_status;
+          point.newton.plain_direction = rp.slip_direction;
+          point.newton.plain_violated  = violated;
+          if (point.geometric.frozen)
             {
               ++stats.n_geometric_frozen;
               stats.n_geometric_violated += violated;
@@ -439,24 +441,25 @@ namespace Signorini
         {
           // Back to the status of two iterates before (a 2-cycle), or
           // changed more than 2 N times (longer cycles).
-          point.changes += changed;
+          point.newton.changes += changed;
           const bool back =
             changed && iterates_recorded >= 2 &&
-            ((status == point.status_before &&
+            ((status == point.newton.status_before &&
               (status != PointStatus::slip ||
-               r.slip_direction * point.direction_before >= 0)) ||
-             (point.changes > 2 * freeze_after));
+               r.slip_direction * point.newton.direction_before >= 0)) ||
+             (point.newton.changes > 2 * freeze_after));
           if (back)
             {
-              ++point.cycles;
+              ++point.newton.cycles;
               ++stats.n_cycling;
             }
-          if (back && point.cycles >= freeze_after && !point.was_frozen)
+          if (back && point.newton.cycles >= freeze_after &&
+              !point.newton.was_frozen)
             {
               // Freeze from the next evaluation on: in contact if the cycle
               // went through 'free', slipping in the last slip direction if
               // it went through stick or reversed.
-              point.was_frozen = true;
+              point.newton.was_frozen = true;
               ++stats.n_newly_frozen;
               freeze_for_cycle(point,
                                status,
@@ -468,8 +471,8 @@ namespace Signorini
         }
       if (new_iterate)
         {
-          point.status_before    = point.status;
-          point.direction_before = point.slip_direction;
+          point.newton.status_before    = point.status;
+          point.newton.direction_before = point.slip_direction;
         }
       point.status          = status;
       point.friction_active = r.friction_active;

@@ -195,10 +195,10 @@ namespace Signorini
       s.slip = e.du_e - du_m;
       s.slip -= (s.slip * s.normal) * s.normal;
 
-      s.freeze_contact        = point.freeze_contact;
-      s.frozen_slip_direction = point.frozen_slip_direction;
-      s.freeze_stick          = point.freeze_stick;
-      s.release               = point.release;
+      s.freeze_contact        = point.newton.freeze_contact;
+      s.frozen_slip_direction = point.newton.frozen_slip_direction;
+      s.freeze_stick          = point.newton.freeze_stick;
+      s.release               = point.newton.release;
       // A point whose multiplier nodes are all excluded from contact
       // (friction) by a Dirichlet condition (formulation.md 8) carries no
       // contact (friction) force: its multipliers are held at zero, and the

@@ -147,43 +147,25 @@ namespace Signorini
     std::vector<typename ContactProblem<dim>::PointRecord>
     ContactProblem<dim>::gather_points() const
     {
-      std::vector<double> pack;
+      std::vector<PointRecord> mine;
       for (const auto &point : points)
         {
-          const unsigned int p  = slave_faces[point.face].pair;
-          const double       mu = parameters.contact.pairs[p].friction;
-          pack.push_back(p);
-          for (unsigned int d = 0; d < dim; ++d)
-            pack.push_back(point.x_ref[d]);
-          pack.push_back(point.weight);
-          pack.push_back(-point.lambda);
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            pack.push_back(mu * point.lambda * point.Lambda[k]);
-          pack.push_back(point.gap);
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            pack.push_back(point.slip[k]);
-          pack.push_back(static_cast<double>(point.status));
-          pack.push_back(point.paired);
+          PointRecord r;
+          r.pair = slave_faces[point.face].pair;
+          const double mu = parameters.contact.pairs[r.pair].friction;
+          r.x             = point.x_ref;
+          r.weight        = point.weight;
+          r.p             = -point.lambda;
+          r.traction      = mu * point.lambda * point.Lambda;
+          r.gap           = point.gap;
+          r.slip          = point.slip;
+          r.status        = point.status;
+          r.paired        = point.paired;
+          mine.push_back(r);
         }
       std::vector<PointRecord> records;
-      for (const auto &part : Utilities::MPI::all_gather(comm, pack))
-        for (unsigned int i = 0; i < part.size();)
-          {
-            PointRecord r;
-            r.pair = static_cast<unsigned int>(part[i++]);
-            for (unsigned int d = 0; d < dim; ++d)
-              r.x[d] = part[i++];
-            r.weight = part[i++];
-            r.p      = part[i++];
-            for (unsigned int k = 0; k < dim - 1; ++k)
-              r.traction[k] = part[i++];
-            r.gap = part[i++];
-            for (unsigned int k = 0; k < dim - 1; ++k)
-              r.slip[k] = part[i++];
-            r.status = static_cast<PointStatus>(static_cast<int>(part[i++]));
-            r.paired = part[i++] != 0;
-            records.push_back(r);
-          }
+      for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+        records.insert(records.end(), part.begin(), part.end());
       std::sort(records.begin(),
                 records.end(),
                 [](const PointRecord &a, const PointRecord &b) {

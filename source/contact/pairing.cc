@@ -114,12 +114,12 @@ namespace Signorini
             projection.x_m - motion_at_start[p].apply(
                                obstacles[p]->get_motion().inverse(projection.x_m));
         }
-      else if (point.pinned_face >= 0 && !mortar)
+      else if (point.geometric.pinned_face >= 0 && !mortar)
         {
           // Pinned by a pairing 2-cycle: the face is kept while the
           // projection onto it stays within the tolerance.
-          if (!pair_with_face(point.pinned_face))
-            point.pinned_face = -1;
+          if (!pair_with_face(point.geometric.pinned_face))
+            point.geometric.pinned_face = -1;
         }
       else if (point.segment_master >= 0)
         // Mortar: the master face of the point's piece (the search below
@@ -130,16 +130,16 @@ namespace Signorini
 
       // Pairing 2-cycle: back on the face of two pairings before.
       bool pinned = false;
-      if (!mortar && !obstacles[p] && point.pinned_face < 0 &&
+      if (!mortar && !obstacles[p] && point.geometric.pinned_face < 0 &&
           point.master_face >= 0 && pairings_in_step >= 3 &&
-          point.master_face == point.geo_face_2 &&
-          point.master_face != point.geo_face_1)
+          point.master_face == point.geometric.face_2 &&
+          point.master_face != point.geometric.face_1)
         {
-          point.pinned_face = point.master_face;
+          point.geometric.pinned_face = point.master_face;
           pinned            = true;
         }
-      point.geo_face_2 = point.geo_face_1;
-      point.geo_face_1 = point.master_face;
+      point.geometric.face_2 = point.geometric.face_1;
+      point.geometric.face_1 = point.master_face;
       // The contact normal points into the master (formulation.md 2), along
       // the slave's outward normal.
       if (!point.paired)
@@ -361,20 +361,21 @@ namespace Signorini
                     points[i].slip_direction  = old_points[j].slip_direction;
                     // The geometric loop's history and freeze (the
                     // segmentation changes with every pairing).
-                    const auto &o              = old_points[j];
-                    points[i].geo_status_1     = o.geo_status_1;
-                    points[i].geo_status_2     = o.geo_status_2;
-                    points[i].geo_direction_1  = o.geo_direction_1;
-                    points[i].geo_direction_2  = o.geo_direction_2;
-                    points[i].geometric_freeze = o.geometric_freeze;
-                    points[i].was_frozen       = o.geometric_freeze;
-                    points[i].freeze_contact =
-                      o.geometric_freeze && o.freeze_contact;
-                    points[i].freeze_stick =
-                      o.geometric_freeze && o.freeze_stick;
-                    points[i].frozen_slip_direction =
-                      o.geometric_freeze ? o.frozen_slip_direction :
-                                           Tensor<1, dim>();
+                    const auto &o = old_points[j].geometric;
+                    auto       &g = points[i].geometric;
+                    g.status_1    = o.status_1;
+                    g.status_2    = o.status_2;
+                    g.direction_1 = o.direction_1;
+                    g.direction_2 = o.direction_2;
+                    g.frozen      = o.frozen;
+                    // The freeze only where the loop froze the point.
+                    const auto &n    = old_points[j].newton;
+                    auto       &h    = points[i].newton;
+                    h.was_frozen     = o.frozen;
+                    h.freeze_contact = o.frozen && n.freeze_contact;
+                    h.freeze_stick   = o.frozen && n.freeze_stick;
+                    h.frozen_slip_direction =
+                      o.frozen ? n.frozen_slip_direction : Tensor<1, dim>();
                   }
             }
         }

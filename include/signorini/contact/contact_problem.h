@@ -395,6 +395,14 @@ namespace Signorini
         Tensor<1, dim - 1> slip;     // v in tangent coordinates
         PointStatus        status;
         bool               paired;
+
+        // Utilities::MPI::all_gather() sends records through this.
+        template <class Archive>
+        void
+        serialize(Archive &archive, const unsigned int)
+        {
+          archive &pair &x &weight &p &traction &gap &slip &status &paired;
+        }
       };
       std::vector<PointRecord>
       gather_points() const;
@@ -542,9 +550,9 @@ namespace Signorini
       static void
       clear_freeze(ContactPoint &point)
       {
-        point.freeze_contact        = false;
-        point.frozen_slip_direction = Tensor<1, dim>();
-        point.freeze_stick          = false;
+        point.newton.freeze_contact        = false;
+        point.newton.frozen_slip_direction = Tensor<1, dim>();
+        point.newton.freeze_stick          = false;
       }
 
       /**
@@ -565,16 +573,16 @@ namespace Signorini
       {
         if (status == PointStatus::free || other == PointStatus::free)
           {
-            point.freeze_contact = true;
+            point.newton.freeze_contact = true;
             return true;
           }
         if (!friction)
           return false;
-        point.freeze_contact = true;
+        point.newton.freeze_contact = true;
         if (status == PointStatus::slip && other == PointStatus::slip)
-          point.freeze_stick = true;
+          point.newton.freeze_stick = true;
         else
-          point.frozen_slip_direction =
+          point.newton.frozen_slip_direction =
             status == PointStatus::slip ? direction : other_direction;
         return true;
       }
