@@ -18,6 +18,7 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <signorini/contact/jacobian_check.h>
 #include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
@@ -412,130 +413,35 @@ namespace Signorini
   }
 
 
-  // Development check (Newton/Check Jacobian): every column j of the
-  // assembled contact matrix K_c against the central difference
-  // -(r(x + h e_j) - r(x - h e_j)) / 2h of the contact part r = -R_c of the
-  // right-hand side, with the pairing fixed as in Newton. Columns whose
-  // perturbation flips a status straddle a kink and are skipped (counted).
+  // Development check (Newton/Check Jacobian, contact/jacobian_check.h) at
+  // the current iterate. The step floors: 1e-6 of the mesh diameter, 1e-3
+  // of the largest modulus, and 1 (with a floor of 1e-6 E, lambda = 0 after
+  // an open solve gave steps of 1e-12 E and central differences of
+  // round-off noise, 6e-5).
   template <int dim>
   void
   Simulation<dim>::check_jacobian()
   {
-    const types::global_dof_index n_u = dof_handler.n_dofs();
-    const types::global_dof_index n_l = contact->n_lambda_dofs();
-    TrilinosWrappers::SparseMatrix K;
-    K.reinit(system_matrix);
-    K = 0;
-    // Right-hand sides with the writable off-rank entries of newton_rhs.
-    TrilinosWrappers::MPI::Vector r0 = newton_rhs, r_plus = newton_rhs,
-                                  r_minus = newton_rhs;
-    r0 = 0;
-    TrilinosWrappers::MPI::Vector column(owned_system, mpi_communicator),
-      unit(column);
-    TrilinosWrappers::MPI::Vector force = contact_force;
-    const auto saved_statistics = contact_statistics;
-    contact->assemble(state, state_step_start, constraints_update, &K, r0,
-                      force);
-    K.compress(VectorOperation::add);
-
-    // Step sizes: 1e-6 of the block's largest magnitude
-    double scale[3] = {0, 0, 0};
-    for (const auto i : owned_system)
-      {
-        double &s = scale[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)];
-        s         = std::max(s, std::abs(state[i]));
-      }
-    // and never below a floor (1e-6 of the mesh diameter, 1e-3 of the
-    // largest Young's modulus, a contact pressure level, and 1), so that a
-    // block that is zero up to round-off is not perturbed by round-off
-    // (with a floor of 1e-6 E, lambda = 0 after an open solve gave steps
-    // of 1e-12 E and central differences of round-off noise, 6e-5).
     double E_max = 0;
     for (const auto &[id, material] : materials)
       E_max = std::max(E_max, material->representative_modulus());
-    const double floor[3] = {1e-6 * model_size,
-                             1e-3 * E_max,
-                             1.};
-    for (unsigned int b = 0; b < 3; ++b)
-      scale[b] = 1e-6 * std::max(Utilities::MPI::max(scale[b], mpi_communicator),
-                                 floor[b]);
-
-    // The base state with the owned layout, copied entry by entry: an
-    // assignment between vectors of different layouts may take a
-    // collective code path on some ranks only.
-    TrilinosWrappers::MPI::Vector base(owned_system, mpi_communicator);
-    for (const auto i : owned_system)
-      base[i] = state[i];
-    base.compress(VectorOperation::insert);
-    double       worst = 0;
-    unsigned int n_checked = 0, n_kinked = 0;
-    double       block_size[3] = {0, 0, 0};
-    std::vector<std::pair<unsigned int, double>> differences;
-    const auto   evaluate  = [&](const types::global_dof_index j,
-                              const double                  delta,
-                              TrilinosWrappers::MPI::Vector &r) {
-      TrilinosWrappers::MPI::Vector owned = base;
-      if (owned_system.is_element(j))
-        owned[j] += delta;
-      owned.compress(VectorOperation::insert);
-      state = owned;
-      r     = 0;
-      const auto st = contact->assemble(
-        state, state_step_start, constraints_update, nullptr, r, force);
-      r.compress(VectorOperation::add);
-      return st.n_changed;
-    };
-    for (const auto j : contact->coupled_dofs())
-      {
-        // Each rank knows the constraint lines of its relevant DoFs only;
-        // all ranks must take the same branch (collective calls follow).
-        if (Utilities::MPI::max(constraints_update.is_constrained(j) ? 1 : 0,
-                                mpi_communicator) > 0)
-          continue;
-        const unsigned int b = j < n_u ? 0 : (j < n_u + n_l ? 1 : 2);
-        unit = 0;
-        if (owned_system.is_element(j))
-          unit[j] = 1;
-        unit.compress(VectorOperation::insert);
-        K.vmult(column, unit);
-        // The block's size from every column, also those at a kink: when
-        // the few smooth columns of a block are zero up to round-off,
-        // their noise is not an error.
-        block_size[b] = std::max(block_size[b], column.linfty_norm());
-        const double h = scale[b];
-        const unsigned int flips =
-          evaluate(j, h, r_plus) + evaluate(j, -h, r_minus);
-        if (flips > 0)
-          {
-            ++n_kinked;
-            evaluate(j, 0, r_plus); // statuses back to the base state
-            continue;
-          }
-        r_plus -= r_minus;
-        r_plus *= -1. / (2 * h); // the finite-difference column
-        column -= r_plus;
-        differences.emplace_back(b, column.linfty_norm());
-      }
-    // Relative to the largest column of the same block (u, lambda,
-    // Lambda): a column that is zero up to round-off has a finite-
-    // difference column of pure noise, eps |r| / h, which must not count.
-    for (const auto &[b, d] : differences)
-      if (block_size[b] > 0)
-        {
-          worst = std::max(worst, d / block_size[b]);
-          ++n_checked;
-        }
-    // The displacement part 'solution' was never touched; restore the
-    // state and the statuses and statistics of the base state.
-    state = base;
-    r0 = 0;
-    contact->assemble(state, state_step_start, constraints_update, nullptr, r0,
-                      force);
+    const auto saved_statistics = contact_statistics;
+    const auto result =
+      Contact::check_jacobian(*contact,
+                              state,
+                              state_step_start,
+                              constraints_update,
+                              system_matrix,
+                              newton_rhs,
+                              contact_force,
+                              dof_handler.n_dofs(),
+                              {{1e-6 * model_size, 1e-3 * E_max, 1.}});
     contact_statistics = saved_statistics;
-    jacobian_error_max = std::max(jacobian_error_max, worst);
-    pcout << "      Jacobian check: " << n_checked << " columns, "
-          << n_kinked << " at a kink, max relative error " << std::scientific
-          << std::setprecision(1) << worst << std::defaultfloat << std::endl;
+    jacobian_error_max = std::max(jacobian_error_max, result.worst);
+    pcout << "      Jacobian check: " << result.n_checked << " columns, "
+          << result.n_kinked << " at a kink, max relative error "
+          << std::scientific << std::setprecision(1) << result.worst
+          << std::defaultfloat << std::endl;
   }
 
 
