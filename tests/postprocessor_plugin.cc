@@ -5,8 +5,10 @@
 // parameter 'Expected resultant'. The scene is the B1 contact patch (two
 // blocks, E = 2e6 Pa, nu = 0, mortar rule, the top pushed down by 0.1 m):
 // the pressure is p = E 0.05 = 1e5 Pa on the face of width 1 m, so
-// F = 1e5 N/m. Checked facts: F = 1e5 N/m to 1e-10, and the check bites: a
-// wrong expected value fails it and the run counts one failed check more.
+// F = 1e5 N/m. It also adds F as the column 'pressure_resultant' of
+// statistics.csv. Checked facts: F = 1e5 N/m to 1e-10 in the check and to
+// the 7 digits of the CSV in the column; and the check bites: a wrong expected
+// value fails it and the run counts one failed check more.
 #include <deal.II/base/mpi.h>
 
 #include <signorini/contact/contact_problem.h>
@@ -65,6 +67,7 @@ namespace Example
       for (const auto &point : data.contact->gather_points())
         if (point.status != Signorini::Contact::PointStatus::free)
           resultant += point.p * point.weight;
+      data.statistics.add("pressure_resultant", resultant);
       CheckResult check;
       check.what      = "pressure resultant";
       check.value     = resultant;
@@ -90,11 +93,38 @@ SIGNORINI_REGISTER_POSTPROCESSOR(Example::PressureResultant,
                                  "the integral of the contact pressure "
                                  "(tests/postprocessor_plugin.cc)")
 
+namespace Example
+{
+  // A faulty postprocessor: its statistics column changes name after the
+  // first step, which the run must refuse with a message.
+  template <int dim>
+  class RenamedColumn : public Signorini::Postprocess::Interface<dim>
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &)
+    {
+    }
+
+    std::vector<CheckResult>
+    execute(const Signorini::Postprocess::StepData<dim> &data) override
+    {
+      data.statistics.add(data.step == 1 ? "first" : "second", data.time);
+      return {};
+    }
+  };
+} // namespace Example
+
+SIGNORINI_REGISTER_POSTPROCESSOR(Example::RenamedColumn,
+                                 "renamed column",
+                                 "a faulty statistics column "
+                                 "(tests/postprocessor_plugin.cc)")
+
 namespace
 {
   // The patch scene; 'pressure resultant' expects @p expected.
   std::string
-  scene(const double expected)
+  scene(const double expected, const std::string &postprocessors)
   {
     std::ostringstream text;
     text << "set Dimension = 2\n"
@@ -125,9 +155,11 @@ namespace
             " set Maximum contact pressure = 1e5\n"
             " set Pressure tolerance = 1e-8\nend\n"
             "subsection Output\n set Verbosity = quiet\n"
-            " set Write CSV = false\n"
+            " set Directory = results\n"
             " set Timing summary = false\n"
-            " set Postprocessors = reference checks, pressure resultant\n"
+            " set Postprocessors = "
+         << postprocessors
+         << "\n"
             " subsection Pressure resultant\n  set Expected resultant = "
          << expected << "\n end\nend\n";
     return text.str();
@@ -138,7 +170,8 @@ namespace
   {
     dealii::ParameterHandler    prm;
     const Signorini::Parameters parameters =
-      Signorini::read_parameters_from_string(scene(expected), prm);
+      Signorini::read_parameters_from_string(
+        scene(expected, "reference checks, pressure resultant"), prm);
     Signorini::Simulation<2> simulation(parameters, prm, MPI_COMM_WORLD);
     simulation.run();
     for (const auto &check : simulation.last_step_checks())
@@ -151,6 +184,42 @@ namespace
                   Signorini::Postprocess::format(check.error, 2))
             << ", " << (check.pass ? "PASS" : "FAIL") << "; failed checks "
             << simulation.failed_checks() << "\n";
+    // The column of the last step in statistics.csv (rank 0 writes it).
+    std::ifstream csv("results/statistics.csv");
+    std::string   header, row, name, value;
+    std::getline(csv, header);
+    for (std::string line; std::getline(csv, line);)
+      row = line;
+    std::istringstream names(header), values(row);
+    while (std::getline(names, name, ',') && std::getline(values, value, ','))
+      if (name == "pressure_resultant")
+        out << "statistics.csv: pressure_resultant = " << value
+            << " N/m: equal to 1e5 to the 7 digits of the CSV: "
+            << (std::abs(std::stod(value) - 1e5) <= 5e-7 * 1e5 ? "yes" : "NO")
+            << "\n";
+  }
+
+  // Two load steps with 'renamed column': the second step's row does not
+  // match the header, and the run stops with a message.
+  void
+  run_renamed(std::ostream &out)
+  {
+    dealii::ParameterHandler    prm;
+    const Signorini::Parameters parameters =
+      Signorini::read_parameters_from_string(
+        scene(1e5, "reference checks, renamed column") +
+          "subsection Load stepping\n set Number of steps = 2\nend\n",
+        prm);
+    Signorini::Simulation<2> simulation(parameters, prm, MPI_COMM_WORLD);
+    try
+      {
+        simulation.run();
+        out << "renamed column: the run did not stop\n";
+      }
+    catch (const Signorini::RunError &e)
+      {
+        out << "renamed column: " << e.what() << "\n";
+      }
   }
 } // namespace
 
@@ -161,5 +230,6 @@ main(int argc, char **argv)
   std::ofstream                            out("output");
   run(out, 1e5);   // the exact resultant: passes
   run(out, 1.1e5); // 10 % off: fails, and the run counts it
+  run_renamed(out);
   return 0;
 }

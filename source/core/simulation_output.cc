@@ -357,6 +357,7 @@ namespace Signorini
             add("obstacle_displacement" + name + axis[d],
                 summary[p].obstacle_displacement[d]);
       }
+    add_postprocessor_columns(header, row);
     const auto line = [](const std::vector<std::string> &fields) {
       std::string text;
       for (unsigned int c = 0; c < fields.size(); ++c)
@@ -364,6 +365,33 @@ namespace Signorini
       return text + "\n";
     };
     return (header ? line(statistics_header) : std::string()) + line(row);
+  }
+
+
+  // The postprocessors' columns after the run's own: at the first step
+  // they extend the header, later the names must be the header's.
+  template <int dim>
+  void
+  Simulation<dim>::add_postprocessor_columns(const bool                header,
+                                             std::vector<std::string> &row)
+  {
+    for (const auto &column : postprocessor_columns.columns())
+      {
+        if (header)
+          statistics_header.push_back(column.name);
+        else if (row.size() >= statistics_header.size() ||
+                 statistics_header[row.size()] != column.name)
+          throw RunError("postprocessor '" + column.owner +
+                         "': the statistics column '" + column.name +
+                         "' stands where the first step's statistics.csv "
+                         "header has another; a postprocessor must add the "
+                         "same columns at every step.");
+        row.push_back(format(column.value));
+      }
+    if (row.size() != statistics_header.size())
+      throw RunError("statistics.csv: the postprocessors added fewer "
+                     "columns than at the first step; a postprocessor must "
+                     "add the same columns at every step.");
   }
 
 
@@ -507,11 +535,16 @@ namespace Signorini
                                           [this](const Point<dim>  &p,
                                                  const unsigned int c) {
                                             return point_value(p, c);
-                                          }};
+                                          },
+                                          postprocessor_columns};
     step_checks.clear();
-    for (const auto &postprocessor : postprocessors)
-      for (auto &check : postprocessor->execute(data))
-        step_checks.push_back(std::move(check));
+    postprocessor_columns.clear();
+    for (unsigned int i = 0; i < postprocessors.size(); ++i)
+      {
+        postprocessor_columns.set_owner(parameters.output.postprocessors[i]);
+        for (auto &check : postprocessors[i]->execute(data))
+          step_checks.push_back(std::move(check));
+      }
   }
 
 

@@ -686,8 +686,9 @@ namespace Signorini
                 const TrilinosWrappers::MPI::Vector &state) const;
 
       /**
-       * Statuses per multiplier node (`Statuses = node`): the
-       * weighted gaps of the node-status pairs, summed over all ranks,
+       * Statuses per multiplier node (integration-point rules on meshed
+       * masters): the weighted gaps of the node-status pairs, summed over
+       * all ranks,
        * decide node_active; returns the number of owned nodes whose status
        * changed.
        */
@@ -697,17 +698,19 @@ namespace Signorini
                            const bool                           new_iterate,
                            ContactStatistics &                  stats);
 
-      /** Anti-cycling of one node's friction status @p nf (decided by the
-       * plain law) at an evaluation: applies the node's freeze, records
-       * what the plain law says under it, and at a new iterate counts a
-       * return to the status of two iterates back against @p previous
-       * (the status of the last solve) and freezes after 'Freeze after
-       * cycles' of them. Counts into @p stats when @p owned. */
       /** Stick/slip status (or a slip direction turned by more than 90
        * degrees) of a node differs from @p previous (none: inactive). */
       static bool
       friction_status_differs(const NodeFriction *previous,
                               const NodeFriction &now);
+
+      /** Anti-cycling of one node's friction status @p nf (decided by the
+       * plain law) at an evaluation: applies the node's freeze, records
+       * what the plain law says under it, and at a new iterate counts a
+       * return to the status of two iterates back against @p previous
+       * (the status of the last solve) and freezes after
+       * ContactParameters::freeze_after_cycles of them. Counts into
+       * @p stats when @p owned. */
       NodeFriction
       node_anti_cycling(const types::global_dof_index dof,
                         const NodeFriction &          nf,

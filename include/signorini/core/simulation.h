@@ -272,6 +272,10 @@ namespace Signorini
     compute_reactions();
     void
     run_postprocessors(const unsigned int step, const double time);
+    /** Appends the postprocessors' statistics columns to @p row (and at
+     * the first step to the header); RunError where they differ. */
+    void
+    add_postprocessor_columns(const bool header, std::vector<std::string> &row);
     /** Output directory of the run: earlier results removed, parameters
      * echoed, newton_history.csv started. */
     void
@@ -382,6 +386,7 @@ namespace Signorini
     // across steps) and their checks of the step, printed after it.
     std::vector<std::unique_ptr<Postprocess::Interface<dim>>> postprocessors;
     std::vector<Postprocess::CheckResult>                     step_checks;
+    Postprocess::StatisticsColumns        postprocessor_columns; // of the step
     std::vector<std::string>              last_checks; // all checks, last step
     double                        jacobian_error_max  = 0; // Check Jacobian
 

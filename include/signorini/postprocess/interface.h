@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace Signorini
@@ -62,6 +63,61 @@ namespace Signorini
       std::string text;
     };
 
+    /**
+     * Columns a postprocessor adds to the step's row of statistics.csv,
+     * after the run's own (step, Newton iterations, reactions, contact
+     * forces, ...): named values, the same names at every step (the header
+     * is written with the first step; a row whose names differ stops the
+     * run).
+     */
+    class StatisticsColumns
+    {
+    public:
+      /** Adds the column @p name (unique within the row) with @p value. */
+      void
+      add(const std::string &name, const double value)
+      {
+        for (const auto &column : entries)
+          if (column.name == name)
+            throw RunError("postprocessor '" + owner +
+                           "': the statistics column '" + name +
+                           "' was added twice in one step; give each "
+                           "column its own name.");
+        entries.push_back({name, value, owner});
+      }
+
+      struct Column
+      {
+        std::string name;
+        double      value;
+        std::string owner; // the postprocessor that added it
+      };
+
+      const std::vector<Column> &
+      columns() const
+      {
+        return entries;
+      }
+
+      /** Called by the run: clear() for the row of a new step,
+       * set_owner() before each postprocessor's execute(). */
+      void
+      clear()
+      {
+        entries.clear();
+      }
+
+      void
+      set_owner(const std::string &name)
+      {
+        owner = name;
+      }
+
+    private:
+      std::vector<Column> entries;
+      std::string         owner;
+    };
+
     /** The converged state of a written load step. Vectors are ghosted;
      * functions taking a point are collective (every rank calls them). */
     template <int dim>
@@ -86,6 +142,8 @@ namespace Signorini
       // The displacement component c at point p (lowest rank's cell).
       std::function<double(const Point<dim> &, const unsigned int)>
         displacement_at;
+      // Where the postprocessors add their columns of statistics.csv.
+      StatisticsColumns &statistics;
     };
 
     template <int dim>
