@@ -154,7 +154,7 @@ namespace Signorini
       for (auto &[dof, c] : node_cycle)
         if (c.freeze && c.plain_violated)
           {
-            const bool owned = owned_multipliers.is_element(dof);
+            const bool owned = surfaces.owned_multipliers().is_element(dof);
             if (!c.refrozen && c.plain.active)
               {
                 again += owned;
@@ -230,7 +230,7 @@ namespace Signorini
       for (unsigned int i = 0; i < points.size(); ++i)
         {
           auto              &point = points[i];
-          const unsigned int p     = slave_faces[point.face].pair;
+          const unsigned int p     = surfaces.slave_faces()[point.face].pair;
           const bool         now   = point.status != PointStatus::free;
           if (point.newton.extrapolated && now)
             point.newton.keep_closed = true;
@@ -245,7 +245,7 @@ namespace Signorini
                point.newton.keep_closed || point.newton.freeze_contact});
         }
       std::set<types::global_dof_index> seen;
-      for (const auto &face : slave_faces)
+      for (const auto &face : surfaces.slave_faces())
         if (node_status_pair[face.pair])
           for (unsigned int k = 0; k < face.X.size(); ++k)
             {
@@ -351,7 +351,7 @@ namespace Signorini
             {
               node_release.insert(c.dof);
               node_extrapolated.insert(c.dof);
-              n_released += owned_multipliers.is_element(c.dof);
+              n_released += surfaces.owned_multipliers().is_element(c.dof);
             }
         }
       return n_released;

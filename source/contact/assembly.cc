@@ -61,7 +61,7 @@ namespace Signorini
       for (auto &point : points)
         {
           if (point.q == 0)
-            slave_faces[point.face].cell->get_dof_indices(cell_dofs);
+            surfaces.slave_faces()[point.face].cell->get_dof_indices(cell_dofs);
           evaluate_point(point, cell_dofs, state, start, e);
           record_point_status(point, e, new_iterate, stats);
 
@@ -119,7 +119,7 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector        &start,
       PointEvaluation                            &e)
     {
-      const auto        &face = slave_faces[point.face];
+      const auto        &face = surfaces.slave_faces()[point.face];
       const unsigned int p    = face.pair;
       e.law                   = law_parameters(p);
       e.fric                  = e.law.mu > 0;
@@ -170,23 +170,17 @@ namespace Signorini
       s.normal   = point.normal;
       s.tangents = point.tangents;
 
-      e.master =
-        point.master_face >= 0 ? &master_faces[point.master_face] : nullptr;
+      e.master                 = point.master_face >= 0 ?
+                                   &surfaces.master_faces()[point.master_face] :
+                                   nullptr;
       e.n_m               = e.master ? e.master->dofs.size() : 0;
-      Point<dim>     x_m  = point.x_m_rigid;
-      Tensor<1, dim> du_m = point.rigid_increment;
-      if (e.master)
-        {
-          x_m  = Point<dim>();
-          du_m = Tensor<1, dim>();
-          for (unsigned int k = 0; k < e.master->X.size(); ++k)
-            for (unsigned int c = 0; c < dim; ++c)
-              {
-                const auto d = e.master->dofs[k * dim + c];
-                x_m[c] += point.N_m[k] * (e.master->X[k][c] + state[d]);
-                du_m[c] += point.N_m[k] * (state[d] - start[d]);
-              }
-        }
+      const int            m   = point.master_face;
+      const Point<dim>     x_m = e.master ?
+                                   surfaces.master_position(m, point.N_m, state) :
+                                   point.x_m_rigid;
+      const Tensor<1, dim> du_m =
+        e.master ? surfaces.master_increment(m, point.N_m, state, start) :
+                   point.rigid_increment;
       if (point.paired)
         s.gap =
           (e.x_e - x_m) * s.normal + parameters.contact.pairs[p].gap_offset;

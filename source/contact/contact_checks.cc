@@ -89,7 +89,7 @@ namespace Signorini
       const ContactPoint                  &point,
       const TrilinosWrappers::MPI::Vector &state) const
     {
-      const auto        &face   = slave_faces[point.face];
+      const auto        &face   = surfaces.slave_faces()[point.face];
       const unsigned int p      = face.pair;
       const double       mu     = parameters.contact.pairs[p].friction;
       const unsigned int n_l    = face.lambda_dofs.size();
@@ -137,8 +137,9 @@ namespace Signorini
       std::vector<TrilinosWrappers::MPI::Vector> nodal;
       if (any_friction_node)
         for (unsigned int c = 0; c < 3 * dim; ++c)
-          nodal.push_back(
-            writable_vector(owned_multipliers, multiplier_ghosts, comm));
+          nodal.push_back(writable_vector(surfaces.owned_multipliers(),
+                                          surfaces.multiplier_ghosts(),
+                                          comm));
 
       // The largest slip and friction force of each pair (the scale below
       // which a slipping point's direction is round-off).
@@ -147,7 +148,7 @@ namespace Signorini
       for (const auto &point : points)
         if (point.paired)
           {
-            const unsigned int p = slave_faces[point.face].pair;
+            const unsigned int p = surfaces.slave_faces()[point.face].pair;
             scales.v_max[p] =
               std::max(scales.v_max[p], slip_vector(point).norm());
             scales.f_max[p] =
@@ -163,7 +164,7 @@ namespace Signorini
         {
           if (!point.paired)
             continue;
-          const auto        &face = slave_faces[point.face];
+          const auto        &face = surfaces.slave_faces()[point.face];
           const unsigned int p    = face.pair;
           const double       mu   = parameters.contact.pairs[p].friction;
           auto              &r    = result[p];
@@ -222,11 +223,11 @@ namespace Signorini
       for (auto &v : nodal)
         v.compress(VectorOperation::add);
       std::set<types::global_dof_index> seen;
-      for (const auto &face : slave_faces)
+      for (const auto &face : surfaces.slave_faces())
         if (friction_node_pair[face.pair])
           for (const auto dof : face.lambda_dofs)
             {
-              if (!owned_multipliers.is_element(dof) ||
+              if (!surfaces.owned_multipliers().is_element(dof) ||
                   !seen.insert(dof).second)
                 continue;
               const auto it = node_friction.find(dof);

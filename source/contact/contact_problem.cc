@@ -46,8 +46,8 @@ namespace Signorini
         , fe(fe)
         , materials(materials)
         , comm(comm)
-        , face_fe(parameters.fe_degree)
         , obstacles(std::move(obstacles_in))
+        , surfaces(parameters, mapping, fe, dof_handler, materials, comm)
     {
       const auto &contact = parameters.contact;
       mortar              = contact.rule == IntegrationRule::mortar;
@@ -107,6 +107,117 @@ namespace Signorini
 
 
     template <int dim>
+    void
+    ContactProblem<dim>::setup(const AffineConstraints<double> &u_constraints,
+                               const IndexSet                  &owned_u,
+                               ConditionalOStream              &pcout)
+    {
+      const auto counts =
+        surfaces.setup(u_constraints, owned_u, node_status_pair);
+      set_coefficients();
+      // Contact points: the rule's points on every owned slave face (the
+      // mortar rule cuts the faces of meshed pairs at every pairing).
+      points.clear();
+      for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
+        {
+          const auto &quadrature = rule->face_quadrature(f);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            points.push_back(
+              make_point(f, q, quadrature.point(q), quadrature.weight(q)));
+        }
+      print_setup(pcout, counts);
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::set_coefficients()
+    {
+      // Coefficients (formulation.md 8, "magic coefficients"): rho_n = c_n
+      // E / h with h the mean slave face size and E the softer body's
+      // Young's modulus (slave, or a meshed master that is softer: a gap
+      // error is resisted by the softer body, and rho_n from a stiff slave
+      // on a soft master weighs the gap 1/contrast too much);
+      // rho_t = c_t rho_n / (mu p_ref) makes the tangential stiffness mu p_ref
+      // rho_t of a sticking point comparable to rho_n (see
+      // update_coefficients); before any pressure is known p_ref = 1e-3 E.
+      const auto        &pairs   = parameters.contact.pairs;
+      const auto        &scales  = surfaces.pair_scales();
+      const unsigned int n_pairs = pairs.size();
+      rho_n.assign(n_pairs, 0.);
+      rho_t.assign(n_pairs, 0.);
+      p_ref.assign(n_pairs, 0.);
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        {
+          const double E  = scales.slave_modulus[p];
+          const double Em = scales.master_modulus[p];
+          rho_n[p] = pairs[p].rho_n_factor * (Em > 0 ? std::min(E, Em) : E) /
+                     scales.face_size[p];
+          p_ref[p] = 1e-3 * E;
+          rho_t[p] = pairs[p].friction > 0 ? pairs[p].rho_t_factor * rho_n[p] /
+                                               (pairs[p].friction * p_ref[p]) :
+                                             1.;
+          if (obstacles[p])
+            obstacles[p]->set_length_scale(scales.face_size[p]);
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::print_setup(
+      ConditionalOStream                   &pcout,
+      const typename Surfaces<dim>::Counts &counts) const
+    {
+      const auto        &pairs   = parameters.contact.pairs;
+      const unsigned int n_pairs = pairs.size();
+      const unsigned int n_points_total =
+        Utilities::MPI::sum(static_cast<unsigned int>(points.size()), comm);
+      pcout << "Contact: " << n_pairs << " pair(s), rule ";
+      if (mortar)
+        {
+          pcout << "mortar (segment-based, " << segment_order
+                << (dim == 2 ? " Gauss points per segment" :
+                               " points per direction on each triangle")
+                << ")";
+          for (const auto &obstacle : obstacles)
+            if (obstacle)
+              {
+                pcout << ", nodal on rigid masters";
+                break;
+              }
+        }
+      else
+        pcout << rule->name() << ", " << n_points_total << " contact points";
+      pcout << " on "
+            << Utilities::MPI::sum(
+                 static_cast<unsigned int>(surfaces.slave_faces().size()), comm)
+            << " slave faces, " << surfaces.n_lambda() << " slave nodes"
+            << std::endl;
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        pcout << "  pair " << p + 1 << ": mu = " << pairs[p].friction
+              << ", h = " << std::setprecision(4)
+              << surfaces.pair_scales().face_size[p] << ", rho_n = " << rho_n[p]
+              << ", rho_t = " << rho_t[p] << std::setprecision(6) << std::endl;
+      for (unsigned int p = 0; p < n_pairs; ++p)
+        if (obstacles[p] && !obstacles[p]->approximate_derivatives().empty())
+          pcout << "  pair " << p + 1 << ": "
+                << obstacles[p]->approximate_derivatives()
+                << ": the contact Jacobian is not exact" << std::endl;
+      if (counts.n_excluded_contact + counts.n_excluded_friction > 0)
+        pcout << "  over-constraint: " << counts.n_excluded_contact
+              << " slave node(s) with a Dirichlet condition along the normal "
+                 "excluded from contact, "
+              << counts.n_excluded_friction
+              << " with a tangential one excluded from friction" << std::endl;
+      if (counts.n_hanging > 0)
+        pcout << "  " << counts.n_hanging
+              << " hanging slave node(s): multipliers interpolated"
+              << std::endl;
+    }
+
+
+    template <int dim>
     LawParameters
     ContactProblem<dim>::law_parameters(const unsigned int p) const
     {
@@ -114,7 +225,7 @@ namespace Signorini
       law.rho_n              = rho_n[p];
       law.rho_t              = rho_t[p];
       law.mu                 = parameters.contact.pairs[p].friction;
-      law.zero_threshold     = 1e-12 * youngs[p];
+      law.zero_threshold     = 1e-12 * surfaces.pair_scales().slave_modulus[p];
       if (law.mu > 0)
         {
           // Friction law of a point with inactive friction, weighted like
@@ -131,49 +242,13 @@ namespace Signorini
 
 
     template <int dim>
-    std::vector<double>
-    ContactProblem<dim>::dual_basis(const SlaveFace &face) const
-    {
-      // Face mass matrix M_lm = integral psi_l psi_m (with the weights of
-      // the contact points: reference Jacobian, 2 pi r if axisymmetric),
-      // D_l = sum_m M_lm; psi~ = D M^-1 psi is biorthogonal to psi.
-      const unsigned int    n = face.node_local.size();
-      const QGauss<dim - 1> gauss(parameters.fe_degree + 2);
-      FullMatrix<double>    M(n, n);
-      std::vector<double>   N;
-      for (unsigned int q = 0; q < gauss.size(); ++q)
-        {
-          face_shape_values<dim>(face.X.size(), gauss.point(q), N);
-          const auto   g = face_geometry<dim>(face.X, gauss.point(q));
-          const double w =
-            gauss.weight(q) * g.jacobian *
-            (parameters.axisymmetric ? 2 * numbers::PI * g.x[0] : 1.);
-          for (unsigned int k = 0; k < N.size(); ++k)
-            for (unsigned int kk = 0; kk < N.size(); ++kk)
-              M(face.k_node[k], face.k_node[kk]) += w * N[k] * N[kk];
-        }
-      std::vector<double> D(n, 0.);
-      for (unsigned int l = 0; l < n; ++l)
-        for (unsigned int m = 0; m < n; ++m)
-          D[l] += M(l, m);
-      FullMatrix<double> M_inverse(n, n);
-      M_inverse.invert(M);
-      std::vector<double> dual(n * n);
-      for (unsigned int l = 0; l < n; ++l)
-        for (unsigned int m = 0; m < n; ++m)
-          dual[l * n + m] = D[l] * M_inverse(l, m);
-      return dual;
-    }
-
-
-    template <int dim>
     typename ContactProblem<dim>::ContactPoint
     ContactProblem<dim>::make_point(const unsigned int    f,
                                     const unsigned int    q,
                                     const Point<dim - 1> &xi,
                                     const double          w) const
     {
-      const auto  &face = slave_faces[f];
+      const auto  &face = surfaces.slave_faces()[f];
       ContactPoint point;
       point.face = f;
       point.q    = q;
@@ -219,21 +294,6 @@ namespace Signorini
 
 
     template <int dim>
-    Point<dim>
-    ContactProblem<dim>::slave_position(
-      const ContactPoint                  &point,
-      const TrilinosWrappers::MPI::Vector &state) const
-    {
-      const auto &face = slave_faces[point.face];
-      Point<dim>  x    = point.x_ref;
-      for (unsigned int l = 0; l < point.psi.size(); ++l)
-        for (unsigned int c = 0; c < dim; ++c)
-          x[c] += point.psi[l] * state[face.node_dofs[l * dim + c]];
-      return x;
-    }
-
-
-    template <int dim>
     double
     ContactProblem<dim>::point_gap(
       const ContactPoint                  &point,
@@ -242,17 +302,13 @@ namespace Signorini
       if (!point.paired)
         return -std::numeric_limits<double>::max();
       const Point<dim> x_e = slave_position(point, state);
-      Point<dim>       x_m = point.x_m_rigid;
-      if (point.master_face >= 0)
-        {
-          const auto &m = master_faces[point.master_face];
-          x_m           = Point<dim>();
-          for (unsigned int k = 0; k < m.X.size(); ++k)
-            for (unsigned int c = 0; c < dim; ++c)
-              x_m[c] += point.N_m[k] * (m.X[k][c] + state[m.dofs[k * dim + c]]);
-        }
+      const Point<dim> x_m =
+        point.master_face < 0 ?
+          point.x_m_rigid :
+          surfaces.master_position(point.master_face, point.N_m, state);
       return (x_e - x_m) * point.normal +
-             parameters.contact.pairs[slave_faces[point.face].pair].gap_offset;
+             parameters.contact.pairs[surfaces.slave_faces()[point.face].pair]
+               .gap_offset;
     }
 
 
@@ -266,16 +322,10 @@ namespace Signorini
       // v = P (Delta u^e - Delta u^m), in the tangent basis of the point.
       Tensor<1, dim> v =
         slave_position(point, state) - slave_position(point, start);
-      if (point.master_face < 0)
-        v -= point.rigid_increment;
-      else
-        {
-          const auto &m = master_faces[point.master_face];
-          for (unsigned int k = 0; k < m.X.size(); ++k)
-            for (unsigned int c = 0; c < dim; ++c)
-              v[c] -= point.N_m[k] *
-                      (state[m.dofs[k * dim + c]] - start[m.dofs[k * dim + c]]);
-        }
+      v -=
+        point.master_face < 0 ?
+          point.rigid_increment :
+          surfaces.master_increment(point.master_face, point.N_m, state, start);
       Tensor<1, dim - 1> t;
       for (unsigned int k = 0; k < dim - 1; ++k)
         t[k] = v * point.tangents[k];
@@ -293,8 +343,8 @@ namespace Signorini
       // Pressures at or below the zero threshold (e.g. the 'closed'
       // initial multipliers, see set_initial_multipliers) are not a
       // pressure level: they would make rho_t enormous.
-      for (const auto &[dof0, node] : nodes)
-        if (owned_multipliers.is_element(node.lambda) &&
+      for (const auto &[dof0, node] : surfaces.nodes())
+        if (surfaces.owned_multipliers().is_element(node.lambda) &&
             state[node.lambda] < -law_parameters(node.pair).zero_threshold)
           {
             sum2[node.pair] += state[node.lambda] * state[node.lambda];
@@ -321,12 +371,12 @@ namespace Signorini
       const std::vector<types::global_dof_index> &cell_dofs,
       std::vector<types::global_dof_index>       &dofs) const
     {
-      const auto &face = slave_faces[point.face];
+      const auto &face = surfaces.slave_faces()[point.face];
       dofs.clear();
       for (const auto i : face.u_local)
         dofs.push_back(cell_dofs[i]);
       if (point.master_face >= 0)
-        for (const auto d : master_faces[point.master_face].dofs)
+        for (const auto d : surfaces.master_faces()[point.master_face].dofs)
           dofs.push_back(d);
       dofs.insert(dofs.end(), face.lambda_dofs.begin(), face.lambda_dofs.end());
       dofs.insert(dofs.end(),
@@ -343,7 +393,7 @@ namespace Signorini
         cell_dofs(fe.n_dofs_per_cell());
       for (const auto &point : points)
         {
-          slave_faces[point.face].cell->get_dof_indices(cell_dofs);
+          surfaces.slave_faces()[point.face].cell->get_dof_indices(cell_dofs);
           point_dofs(point, cell_dofs, dofs);
           mine.insert(mine.end(), dofs.begin(), dofs.end());
         }
@@ -370,7 +420,7 @@ namespace Signorini
       std::set<int> masters_of_face;
       for (const auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
+          const auto &face = surfaces.slave_faces()[point.face];
           if (static_cast<int>(point.face) != last_face)
             {
               face.cell->get_dof_indices(cell_dofs);
@@ -424,10 +474,10 @@ namespace Signorini
       double sum = 0;
       for (const auto &point : points)
         if (point.paired)
-          sum +=
-            std::pow(2 * point.weight * rho_n[slave_faces[point.face].pair] *
-                       point.x_ref.norm(),
-                     2);
+          sum += std::pow(2 * point.weight *
+                            rho_n[surfaces.slave_faces()[point.face].pair] *
+                            point.x_ref.norm(),
+                          2);
       return std::sqrt(Utilities::MPI::sum(sum, comm));
     }
 

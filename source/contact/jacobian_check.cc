@@ -40,7 +40,7 @@ namespace Signorini
     {
       const MPI_Comm                comm  = rhs_layout.get_mpi_communicator();
       const IndexSet                owned = rhs_layout.locally_owned_elements();
-      const types::global_dof_index n_l   = contact.n_lambda_dofs();
+      const types::global_dof_index n_l = contact.contact_surfaces().n_lambda();
       TrilinosWrappers::SparseMatrix K;
       K.reinit(matrix_layout);
       K = 0;

@@ -21,7 +21,7 @@ namespace Signorini
       PointEvaluation                     &e,
       Vector<double>                      &F) const
     {
-      const auto        &face  = slave_faces[point.face];
+      const auto        &face  = surfaces.slave_faces()[point.face];
       const unsigned int p     = face.pair;
       const auto        &r     = e.r;
       const auto        &law   = e.law;
@@ -104,7 +104,7 @@ namespace Signorini
                                         const PointEvaluation &e,
                                         FullMatrix<double>    &K) const
     {
-      const unsigned int p     = slave_faces[point.face].pair;
+      const unsigned int p     = surfaces.slave_faces()[point.face].pair;
       const auto        &r     = e.r;
       const auto        &psi   = point.psi;
       const auto        &psi_c = point.psi_lambda;
@@ -163,7 +163,7 @@ namespace Signorini
       const PointEvaluation &e,
       FullMatrix<double>    &K) const
     {
-      const unsigned int p     = slave_faces[point.face].pair;
+      const unsigned int p     = surfaces.slave_faces()[point.face].pair;
       const auto        &law   = e.law;
       const auto        &s     = e.s;
       const auto        &psi_c = point.psi_lambda;

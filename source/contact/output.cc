@@ -44,11 +44,12 @@ namespace Signorini
       std::vector<TrilinosWrappers::MPI::Vector> nodal;
       if (any_node_status)
         for (unsigned int c = 0; c < 2 * dim; ++c)
-          nodal.push_back(
-            writable_vector(owned_multipliers, multiplier_ghosts, comm));
+          nodal.push_back(writable_vector(surfaces.owned_multipliers(),
+                                          surfaces.multiplier_ghosts(),
+                                          comm));
       for (const auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
+          const auto &face = surfaces.slave_faces()[point.face];
           auto       &r    = result[face.pair];
           r.force += point.weight * point.force;
           if (node_status_pair[face.pair])
@@ -93,10 +94,10 @@ namespace Signorini
             v.compress(VectorOperation::add);
           // Each owned node once (the owner adds it).
           std::set<types::global_dof_index> seen;
-          for (const auto &face : slave_faces)
+          for (const auto &face : surfaces.slave_faces())
             if (node_status_pair[face.pair])
               for (const auto dof : face.lambda_dofs)
-                if (owned_multipliers.is_element(dof) &&
+                if (surfaces.owned_multipliers().is_element(dof) &&
                     seen.insert(dof).second)
                   {
                     Tensor<1, dim> F, n;
@@ -124,7 +125,7 @@ namespace Signorini
           auto &r     = result[p];
           r.max_gap   = Utilities::MPI::max(r.max_gap, comm);
           r.n_paired  = Utilities::MPI::sum(r.n_paired, comm);
-          r.face_size = face_size[p];
+          r.face_size = surfaces.pair_scales().face_size[p];
         }
       for (auto &r : result)
         {
@@ -151,7 +152,7 @@ namespace Signorini
       for (const auto &point : points)
         {
           PointRecord r;
-          r.pair = slave_faces[point.face].pair;
+          r.pair          = surfaces.slave_faces()[point.face].pair;
           const double mu = parameters.contact.pairs[r.pair].friction;
           r.x             = point.x_ref;
           r.weight        = point.weight;
@@ -248,7 +249,7 @@ namespace Signorini
         scalar_dofs.get_fe().n_dofs_per_cell());
       for (const auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
+          const auto &face = surfaces.slave_faces()[point.face];
           if (point.q == 0)
             {
               typename DoFHandler<dim>::active_cell_iterator scell(
@@ -259,7 +260,8 @@ namespace Signorini
               scell->get_dof_indices(scalar_cell_dofs);
             }
           const double mu =
-            parameters.contact.pairs[slave_faces[point.face].pair].friction;
+            parameters.contact.pairs[surfaces.slave_faces()[point.face].pair]
+              .friction;
           std::vector<double> values = {-point.lambda,
                                         point.paired ? point.gap : 0.,
                                         static_cast<double>(point.status)};
@@ -306,17 +308,17 @@ namespace Signorini
       // owner's: every rank writes the nodes of its faces (the same
       // values), averaged through a count.
       IndexSet touched(dof_handler.n_dofs());
-      for (const auto &face : slave_faces)
+      for (const auto &face : surfaces.slave_faces())
         for (const auto d : face.node_dofs)
           touched.add_index(d);
       touched.compress();
       const IndexSet &owned = dof_handler.locally_owned_dofs();
       auto            num   = writable_vector(owned, touched, comm);
       auto            den   = writable_vector(owned, touched, comm);
-      for (const auto &face : slave_faces)
+      for (const auto &face : surfaces.slave_faces())
         for (unsigned int l = 0; l < face.node_local.size(); ++l)
           {
-            const auto &info = nodes.at(face.node_dofs[l * dim]);
+            const auto &info = surfaces.nodes().at(face.node_dofs[l * dim]);
             for (unsigned int c = 0; c < dim; ++c)
               {
                 double value = 0;
@@ -342,12 +344,16 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector &field,
       TrilinosWrappers::MPI::Vector       &state_owned) const
     {
-      auto num = writable_vector(owned_multipliers, multiplier_ghosts, comm);
-      auto den = writable_vector(owned_multipliers, multiplier_ghosts, comm);
-      for (const auto &face : slave_faces)
+      auto num = writable_vector(surfaces.owned_multipliers(),
+                                 surfaces.multiplier_ghosts(),
+                                 comm);
+      auto den = writable_vector(surfaces.owned_multipliers(),
+                                 surfaces.multiplier_ghosts(),
+                                 comm);
+      for (const auto &face : surfaces.slave_faces())
         for (unsigned int l = 0; l < face.node_local.size(); ++l)
           {
-            const auto &info = nodes.at(face.node_dofs[l * dim]);
+            const auto &info = surfaces.nodes().at(face.node_dofs[l * dim]);
             add_entry(num, info.lambda, field[face.node_dofs[l * dim]]);
             add_entry(den, info.lambda, 1.);
             if (info.friction != numbers::invalid_dof_index)
@@ -361,7 +367,7 @@ namespace Signorini
           }
       num.compress(VectorOperation::add);
       den.compress(VectorOperation::add);
-      for (const auto i : owned_multipliers)
+      for (const auto i : surfaces.owned_multipliers())
         state_owned[i] = den[i] != 0 ? num[i] / den[i] : 0.;
       state_owned.compress(VectorOperation::insert);
     }
@@ -372,8 +378,9 @@ namespace Signorini
     ContactProblem<dim>::contact_zone_cells() const
     {
       std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
-      std::vector<unsigned int> master_active(master_faces.size(), 0);
-      std::vector<bool>         slave_active(slave_faces.size(), false);
+      std::vector<unsigned int> master_active(surfaces.master_faces().size(),
+                                              0);
+      std::vector<bool> slave_active(surfaces.slave_faces().size(), false);
       for (const auto &point : points)
         if (point.status != PointStatus::free)
           {
@@ -381,13 +388,13 @@ namespace Signorini
             if (point.master_face >= 0)
               master_active[point.master_face] = 1;
           }
-      for (unsigned int f = 0; f < slave_faces.size(); ++f)
+      for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
         if (slave_active[f])
-          cells.push_back(slave_faces[f].cell);
+          cells.push_back(surfaces.slave_faces()[f].cell);
       Utilities::MPI::max(master_active, comm, master_active);
-      for (unsigned int m = 0; m < master_faces.size(); ++m)
-        if (master_faces[m].own_cell >= 0 && master_active[m] != 0)
-          cells.push_back(own_master_cells[master_faces[m].own_cell]);
+      for (unsigned int m = 0; m < surfaces.master_faces().size(); ++m)
+        if (surfaces.master_faces()[m].own_cell >= 0 && master_active[m] != 0)
+          cells.push_back(surfaces.master_cell(surfaces.master_faces()[m]));
       return cells;
     }
 

@@ -48,14 +48,17 @@ namespace Signorini
           }
 
       // Master faces in the current configuration and their boxes.
-      std::vector<std::vector<Point<dim>>> x_master(master_faces.size());
-      std::vector<Point<dim>>              inside(master_faces.size());
+      std::vector<std::vector<Point<dim>>> x_master(
+        surfaces.master_faces().size());
+      std::vector<Point<dim>> inside(surfaces.master_faces().size());
       std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
-      for (unsigned int m = 0; m < master_faces.size(); ++m)
+      for (unsigned int m = 0; m < surfaces.master_faces().size(); ++m)
         {
-          master_face_position(m, state, x_master[m], inside[m]);
+          surfaces.master_nodes(m, state, x_master[m], inside[m]);
           BoundingBox<dim> box(x_master[m]);
-          box.extend(0.5 * face_size[master_faces[m].pair]);
+          box.extend(
+            0.5 *
+            surfaces.pair_scales().face_size[surfaces.master_faces()[m].pair]);
           boxes.emplace_back(box, m);
         }
       const auto tree = pack_rtree(boxes);
@@ -85,7 +88,7 @@ namespace Signorini
       const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
     {
       const auto        &contact      = parameters.contact;
-      const auto        &face         = slave_faces[point.face];
+      const auto        &face         = surfaces.slave_faces()[point.face];
       const unsigned int p            = face.pair;
       const Point<dim>   x_e          = slave_position(point, state);
 
@@ -161,9 +164,9 @@ namespace Signorini
       const std::vector<Point<dim>>                          &inside,
       const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
     {
-      const unsigned int p = slave_faces[point.face].pair;
+      const unsigned int p = surfaces.slave_faces()[point.face].pair;
       BoundingBox<dim>   query(std::make_pair(x_e, x_e));
-      query.extend(0.5 * face_size[p]);
+      query.extend(0.5 * surfaces.pair_scales().face_size[p]);
       const auto hits = faces_meeting(tree, query);
       // Inside projections first (closest), then the smallest violation
       // within the tolerance.
@@ -175,7 +178,7 @@ namespace Signorini
       bool                best_is_inside = false;
       for (const unsigned int m : hits)
         {
-          if (master_faces[m].pair != p)
+          if (surfaces.master_faces()[m].pair != p)
             continue;
           const auto proj = project_onto_face(x_e, x_master[m], inside[m]);
           if (!proj.converged)
@@ -216,12 +219,12 @@ namespace Signorini
       // Dual multipliers only on slave faces whose points are all paired:
       // on a face that leaves the master partly, psi~ (negative lobes)
       // would weigh the gap of the paired part alone.
-      std::vector<bool> covered(slave_faces.size(), true);
+      std::vector<bool> covered(surfaces.slave_faces().size(), true);
       for (const auto &point : points)
         covered[point.face] = covered[point.face] && point.paired;
       for (auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
+          const auto &face = surfaces.slave_faces()[point.face];
           point.psi_lambda = point.psi;
           if (face.dual.empty() || !covered[point.face])
             continue;
@@ -250,13 +253,13 @@ namespace Signorini
       // from the penetrated side: with the nearest master faces onto which
       // it projects inside the face and behind it (g > 0). Dropping it
       // would silently lose the contact.
-      const unsigned int p = slave_faces[point.face].pair;
+      const unsigned int p = surfaces.slave_faces()[point.face].pair;
       std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
       tree.query(boost::geometry::index::nearest(x_e, 8),
                  std::back_inserter(hits));
       std::vector<unsigned int> faces;
       for (const auto &hit : hits)
-        if (master_faces[hit.second].pair == p)
+        if (surfaces.master_faces()[hit.second].pair == p)
           faces.push_back(hit.second);
       std::sort(faces.begin(), faces.end()); // partition-independent ties
       double              best_distance = std::numeric_limits<double>::max();
@@ -299,9 +302,9 @@ namespace Signorini
       std::vector<Point<dim>>                      x_slave;
       std::vector<const std::vector<Point<dim>> *> candidates;
       std::vector<unsigned int>                    candidate_face;
-      for (unsigned int f = 0; f < slave_faces.size(); ++f)
+      for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
         {
-          const auto        &face      = slave_faces[f];
+          const auto        &face      = surfaces.slave_faces()[f];
           const unsigned int p         = face.pair;
           const std::size_t  first_new = points.size();
           if (obstacles[p])
@@ -321,11 +324,11 @@ namespace Signorini
                   x_slave[k][c] +=
                     state[face.node_dofs[face.k_node[k] * dim + c]];
               BoundingBox<dim> box(x_slave);
-              box.extend(0.5 * face_size[p]);
+              box.extend(0.5 * surfaces.pair_scales().face_size[p]);
               candidates.clear();
               candidate_face.clear();
               for (const auto m : faces_meeting(tree, box))
-                if (master_faces[m].pair == p)
+                if (surfaces.master_faces()[m].pair == p)
                   {
                     candidates.push_back(&x_master[m]);
                     candidate_face.push_back(m);
@@ -379,28 +382,6 @@ namespace Signorini
                   }
             }
         }
-    }
-
-
-    template <int dim>
-    void
-    ContactProblem<dim>::master_face_position(
-      const unsigned int                   m,
-      const TrilinosWrappers::MPI::Vector &state,
-      std::vector<Point<dim>>             &x,
-      Point<dim>                          &inside) const
-    {
-      const auto &face = master_faces[m];
-      x.resize(face.X.size());
-      Tensor<1, dim> mean_u;
-      for (unsigned int k = 0; k < face.X.size(); ++k)
-        {
-          x[k] = face.X[k];
-          for (unsigned int c = 0; c < dim; ++c)
-            x[k][c] += state[face.dofs[k * dim + c]];
-          mean_u += (x[k] - face.X[k]) / double(face.X.size());
-        }
-      inside = face.inside + mean_u;
     }
 
 

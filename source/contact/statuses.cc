@@ -43,11 +43,15 @@ namespace Signorini
       // 1e-8 of the face size) start closed, as where they penetrate; the
       // others keep lambda = 0 (lambda_aug = -rho_n g: open).
       const double touch_tolerance = 1e-8;
-      auto num = writable_vector(owned_multipliers, multiplier_ghosts, comm);
-      auto den = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto         num = writable_vector(surfaces.owned_multipliers(),
+                                 surfaces.multiplier_ghosts(),
+                                 comm);
+      auto         den = writable_vector(surfaces.owned_multipliers(),
+                                 surfaces.multiplier_ghosts(),
+                                 comm);
       for (const auto &point : points)
         {
-          const auto        &face = slave_faces[point.face];
+          const auto        &face = surfaces.slave_faces()[point.face];
           const unsigned int p    = face.pair;
           const double       g    = point_gap(point, state);
           // delta: half the zero friction threshold of the law (see
@@ -65,7 +69,10 @@ namespace Signorini
             target =
               std::min(0., rho_n[p] * std::max(g, -1e300 / rho_n[p])) - delta;
           else if (status == InitialStatus::penetrating)
-            target = g >= -touch_tolerance * face_size[p] ? -delta : 0.;
+            target =
+              g >= -touch_tolerance * surfaces.pair_scales().face_size[p] ?
+                -delta :
+                0.;
           else
             target = std::max(0., rho_n[p] * g) + delta;
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
@@ -77,8 +84,8 @@ namespace Signorini
         }
       num.compress(VectorOperation::add);
       den.compress(VectorOperation::add);
-      for (const auto i : owned_multipliers)
-        if (i < n_u + n_lambda && den[i] != 0)
+      for (const auto i : surfaces.owned_multipliers())
+        if (i < surfaces.n_u() + surfaces.n_lambda() && den[i] != 0)
           state_owned[i] = num[i] / den[i];
       state_owned.compress(VectorOperation::insert);
     }
@@ -93,7 +100,7 @@ namespace Signorini
       // the augmentation; lambda = 0 at free nodes); the point is labelled
       // with the status of its nearest node (statistics and output).
       PointResponse<dim> r{};
-      const auto        &face = slave_faces[point.face];
+      const auto        &face = surfaces.slave_faces()[point.face];
       const auto         nearest =
         std::max_element(point.psi.begin(), point.psi.end()) -
         point.psi.begin();
@@ -132,19 +139,26 @@ namespace Signorini
       // Weighted gap G_l and weight D_l of every node (faces of all ranks).
       // P_l: the paired share of the node (psi >= 0); a node without
       // paired points has no gap and stays free.
-      auto G = writable_vector(owned_multipliers, multiplier_ghosts, comm);
-      auto D = writable_vector(owned_multipliers, multiplier_ghosts, comm);
-      auto P = writable_vector(owned_multipliers, multiplier_ghosts, comm);
+      auto G = writable_vector(surfaces.owned_multipliers(),
+                               surfaces.multiplier_ghosts(),
+                               comm);
+      auto D = writable_vector(surfaces.owned_multipliers(),
+                               surfaces.multiplier_ghosts(),
+                               comm);
+      auto P = writable_vector(surfaces.owned_multipliers(),
+                               surfaces.multiplier_ghosts(),
+                               comm);
       // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
       // component k in the vector of index k (by the node's lambda DoF).
       std::vector<TrilinosWrappers::MPI::Vector> W;
       if (any_friction_node)
         for (unsigned int k = 0; k < dim - 1; ++k)
-          W.push_back(
-            writable_vector(owned_multipliers, multiplier_ghosts, comm));
+          W.push_back(writable_vector(surfaces.owned_multipliers(),
+                                      surfaces.multiplier_ghosts(),
+                                      comm));
       for (const auto &point : points)
         {
-          const auto &face = slave_faces[point.face];
+          const auto &face = surfaces.slave_faces()[point.face];
           if (!node_status_pair[face.pair])
             continue;
           const double g    = point.paired ? point_gap(point, state) : 0.;
@@ -166,14 +180,14 @@ namespace Signorini
       G.compress(VectorOperation::add);
       D.compress(VectorOperation::add);
       P.compress(VectorOperation::add);
-      TrilinosWrappers::MPI::Vector G_read(owned_multipliers,
-                                           multiplier_ghosts,
+      TrilinosWrappers::MPI::Vector G_read(surfaces.owned_multipliers(),
+                                           surfaces.multiplier_ghosts(),
                                            comm);
-      TrilinosWrappers::MPI::Vector D_read(owned_multipliers,
-                                           multiplier_ghosts,
+      TrilinosWrappers::MPI::Vector D_read(surfaces.owned_multipliers(),
+                                           surfaces.multiplier_ghosts(),
                                            comm);
-      TrilinosWrappers::MPI::Vector P_read(owned_multipliers,
-                                           multiplier_ghosts,
+      TrilinosWrappers::MPI::Vector P_read(surfaces.owned_multipliers(),
+                                           surfaces.multiplier_ghosts(),
                                            comm);
       G_read = G;
       D_read = D;
@@ -182,11 +196,13 @@ namespace Signorini
       for (unsigned int k = 0; k < W.size(); ++k)
         {
           W[k].compress(VectorOperation::add);
-          W_read[k].reinit(owned_multipliers, multiplier_ghosts, comm);
+          W_read[k].reinit(surfaces.owned_multipliers(),
+                           surfaces.multiplier_ghosts(),
+                           comm);
           W_read[k] = W[k];
         }
       unsigned int changed = 0;
-      for (const auto &face : slave_faces)
+      for (const auto &face : surfaces.slave_faces())
         if (node_status_pair[face.pair])
           for (const auto dof : face.lambda_dofs)
             {
@@ -200,7 +216,7 @@ namespace Signorini
               if (it != node_active.end() && it->second == active)
                 continue;
               // Counted once, by the owner (a node is on several faces).
-              if (owned_multipliers.is_element(dof) &&
+              if (surfaces.owned_multipliers().is_element(dof) &&
                   (it != node_active.end() || active))
                 ++changed;
               node_active[dof] = active;
@@ -212,9 +228,9 @@ namespace Signorini
       // several faces), then its anti-cycling.
       std::set<types::global_dof_index> seen;
       if (any_friction_node)
-        for (unsigned int f = 0; f < slave_faces.size(); ++f)
+        for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
           {
-            const auto &face = slave_faces[f];
+            const auto &face = surfaces.slave_faces()[f];
             if (!friction_node_pair[face.pair])
               continue;
             const auto law = law_parameters(face.pair);
@@ -235,7 +251,7 @@ namespace Signorini
                     nf.stick = nf.H.norm() <= 1. + stick_tie;
                   }
                 const auto  it    = node_friction.find(dof);
-                const bool  owned = owned_multipliers.is_element(dof);
+                const bool owned = surfaces.owned_multipliers().is_element(dof);
                 const auto *previous =
                   it == node_friction.end() ? nullptr : &it->second;
                 const auto used = node_anti_cycling(

@@ -12,10 +12,9 @@
 #include <boost/serialization/vector.hpp>
 #include <deal.II/numerics/rtree.h>
 
-#include <signorini/contact/contact_problem.h>
-#include <signorini/contact/distributed_vectors.h>
-#include <signorini/contact/segmentation.h>
-#include <signorini/postprocess/output_files.h>
+#include <signorini/contact/projection.h>
+#include <signorini/contact/surfaces.h>
+#include <signorini/core/errors.h>
 
 #include "helpers.h"
 
@@ -31,7 +30,6 @@ namespace Signorini
 {
   namespace Contact
   {
-    using internal::add_entry;
     using internal::offset_of;
     using internal::pair_name;
 
@@ -46,7 +44,7 @@ namespace Signorini
      * their DoFs (sent to every rank).
      */
     template <int dim>
-    struct ContactProblem<dim>::SurfaceScan
+    struct Surfaces<dim>::Scan
     {
       std::map<types::boundary_id, unsigned int> slave_of, master_of;
       struct SeenNode
@@ -57,7 +55,7 @@ namespace Signorini
       };
       std::map<types::global_dof_index, SeenNode> seen;
       std::vector<double>     h_sum, h_count, e_max, e_master;
-      std::vector<MasterFace> own_master_faces;
+      std::vector<MasterFace<dim>>                own_master_faces;
       std::vector<MasterLine> own_master_lines;
       // Outward normals at slave face centres; positions of support points.
       std::unique_ptr<FEFaceValues<dim>> centre_values;
@@ -65,40 +63,46 @@ namespace Signorini
 
 
     template <int dim>
-    void
-    ContactProblem<dim>::setup(const AffineConstraints<double> &u_constraints,
-                               const IndexSet                  &owned_u,
-                               ConditionalOStream              &pcout)
+    Surfaces<dim>::Surfaces(const Parameters           &parameters,
+                            const Mapping<dim>         &mapping,
+                            const FESystem<dim>        &fe,
+                            const DoFHandler<dim>      &dof_handler,
+                            const Bulk::Materials<dim> &materials,
+                            const MPI_Comm              comm)
+        : parameters(parameters)
+        , mapping(mapping)
+        , fe(fe)
+        , dof_handler(dof_handler)
+        , materials(materials)
+        , comm(comm)
+        , face_fe(parameters.fe_degree)
     {
-      n_u       = dof_handler.n_dofs();
-      auto scan = scan_boundary(u_constraints);
-      set_coefficients(scan);
-      const auto counts = number_multipliers(scan, owned_u, u_constraints);
-      gather_master_faces(scan);
-      finish_slave_faces();
-
-      // Contact points: the rule's points on every owned slave face (the
-      // mortar rule cuts the faces of meshed pairs at every pairing).
-      points.clear();
-      for (unsigned int f = 0; f < slave_faces.size(); ++f)
-        {
-          const auto &quadrature = rule->face_quadrature(f);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            points.push_back(
-              make_point(f, q, quadrature.point(q), quadrature.weight(q)));
-        }
-      print_setup(pcout, counts);
     }
 
 
     template <int dim>
-    typename ContactProblem<dim>::SurfaceScan
-    ContactProblem<dim>::scan_boundary(
-      const AffineConstraints<double> &u_constraints)
+    typename Surfaces<dim>::Counts
+    Surfaces<dim>::setup(const AffineConstraints<double> &u_constraints,
+                         const IndexSet                  &owned_u,
+                         const std::vector<bool>         &dual_pair)
+    {
+      n_displacements = dof_handler.n_dofs();
+      auto scan       = scan_boundary(u_constraints);
+      sum_pair_scales(scan);
+      const auto counts = number_multipliers(scan, owned_u, u_constraints);
+      gather_master_faces(scan);
+      finish_slave_faces(dual_pair);
+      return counts;
+    }
+
+
+    template <int dim>
+    typename Surfaces<dim>::Scan
+    Surfaces<dim>::scan_boundary(const AffineConstraints<double> &u_constraints)
     {
       const auto        &pairs   = parameters.contact.pairs;
       const unsigned int n_pairs = pairs.size();
-      SurfaceScan        scan;
+      Scan               scan;
       scan.centre_values = std::make_unique<FEFaceValues<dim>>(
         mapping, fe, QGauss<dim - 1>(1), update_normal_vectors);
       for (unsigned int p = 0; p < n_pairs; ++p)
@@ -120,8 +124,8 @@ namespace Signorini
       scan.h_count.assign(n_pairs, 0.);
       scan.e_max.assign(n_pairs, 0.);
       scan.e_master.assign(n_pairs, 0.);
-      slave_faces.clear();
-      master_faces.clear();
+      slaves.clear();
+      masters.clear();
       own_master_cells.clear();
 
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
@@ -146,15 +150,15 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::add_slave_face(
+    Surfaces<dim>::add_slave_face(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       const unsigned int                                    f,
       const unsigned int                                    p,
       const std::vector<types::global_dof_index>           &cell_dofs,
-      SurfaceScan                                          &scan)
+      Scan                                                 &scan)
     {
       scan.centre_values->reinit(cell, f);
-      SlaveFace face;
+      SlaveFace<dim> face;
       face.cell           = cell;
       face.face           = f;
       face.pair           = p;
@@ -217,22 +221,22 @@ namespace Signorini
           scan.e_max[p] =
             std::max(scan.e_max[p],
                      materials.at(cell->material_id())->representative_modulus());
-          slave_faces.push_back(face);
+          slaves.push_back(face);
         }
     }
 
 
     template <int dim>
     void
-    ContactProblem<dim>::add_master_face(
+    Surfaces<dim>::add_master_face(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       const unsigned int                                    f,
       const unsigned int                                    p,
       const std::vector<types::global_dof_index>           &cell_dofs,
       const AffineConstraints<double>                      &u_constraints,
-      SurfaceScan                                          &scan)
+      Scan                                                 &scan)
     {
-      MasterFace face;
+      MasterFace<dim> face;
       face.pair = p;
       // Partition-independent identity: the cell's CellId and the face.
       const auto id = cell->id().template to_binary<dim>();
@@ -271,52 +275,33 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::set_coefficients(const SurfaceScan &scan)
+    Surfaces<dim>::sum_pair_scales(const Scan &scan)
     {
-      // Coefficients (formulation.md 8, "magic coefficients"): rho_n = c_n
-      // E / h with h the mean slave face size and E the softer body's
-      // Young's modulus (slave, or a meshed master that is softer: a gap
-      // error is resisted by the softer body, and rho_n from a stiff slave
-      // on a soft master weighs the gap 1/contrast too much);
-      // rho_t = c_t rho_n / (mu p_ref) makes the tangential stiffness mu p_ref
-      // rho_t of a sticking point comparable to rho_n (see
-      // update_coefficients); before any pressure is known p_ref = 1e-3 E.
-      const auto        &pairs   = parameters.contact.pairs;
-      const unsigned int n_pairs = pairs.size();
-      rho_n.assign(n_pairs, 0.);
-      rho_t.assign(n_pairs, 0.);
-      p_ref.assign(n_pairs, 0.);
-      face_size.assign(n_pairs, 0.);
-      youngs.assign(n_pairs, 0.);
+      const unsigned int n_pairs = parameters.contact.pairs.size();
+      scales.face_size.assign(n_pairs, 0.);
+      scales.slave_modulus.assign(n_pairs, 0.);
+      scales.master_modulus.assign(n_pairs, 0.);
       for (unsigned int p = 0; p < n_pairs; ++p)
         {
           const double hs = Utilities::MPI::sum(scan.h_sum[p], comm);
           const double hc = Utilities::MPI::sum(scan.h_count[p], comm);
-          const double E  = Utilities::MPI::max(scan.e_max[p], comm);
-          const double Em = Utilities::MPI::max(scan.e_master[p], comm);
           if (hc == 0)
             throw InputError(pair_name(p) +
                              ", parameter 'Slave boundary id': no boundary "
                              "face of the mesh has these ids. Use ids the "
                              "mesh has (see 'Boundary ids' of the bodies).");
-          face_size[p] = hs / hc;
-          youngs[p]    = E;
-          rho_n[p] = pairs[p].rho_n_factor * (Em > 0 ? std::min(E, Em) : E) /
-                     face_size[p];
-          p_ref[p] = 1e-3 * E;
-          rho_t[p] = pairs[p].friction > 0 ? pairs[p].rho_t_factor * rho_n[p] /
-                                               (pairs[p].friction * p_ref[p]) :
-                                             1.;
-          if (obstacles[p])
-            obstacles[p]->set_length_scale(face_size[p]);
+          scales.face_size[p]     = hs / hc;
+          scales.slave_modulus[p] = Utilities::MPI::max(scan.e_max[p], comm);
+          scales.master_modulus[p] =
+            Utilities::MPI::max(scan.e_master[p], comm);
         }
     }
 
 
     template <int dim>
-    typename ContactProblem<dim>::SetupCounts
-    ContactProblem<dim>::number_multipliers(
-      const SurfaceScan               &scan,
+    typename Surfaces<dim>::Counts
+    Surfaces<dim>::number_multipliers(
+      const Scan                      &scan,
       const IndexSet                  &owned_u,
       const AffineConstraints<double> &u_constraints)
     {
@@ -334,13 +319,13 @@ namespace Signorini
         if (pairs[scan.seen.at(d).pair].friction > 0)
           ++n_owned_friction;
       const types::global_dof_index n_owned_nodes = owned_nodes.size();
-      n_lambda      = Utilities::MPI::sum(n_owned_nodes, comm);
-      n_friction    = Utilities::MPI::sum(n_owned_friction, comm) * (dim - 1);
-      n_nodes_total = n_lambda;
+      n_lambdas   = Utilities::MPI::sum(n_owned_nodes, comm);
+      n_frictions = Utilities::MPI::sum(n_owned_friction, comm) * (dim - 1);
       const types::global_dof_index lambda_offset =
-        n_u + offset_of(n_owned_nodes, comm);
+        n_displacements + offset_of(n_owned_nodes, comm);
       const types::global_dof_index friction_offset =
-        n_u + n_lambda + offset_of(n_owned_friction, comm) * (dim - 1);
+        n_displacements + n_lambdas +
+        offset_of(n_owned_friction, comm) * (dim - 1);
 
       std::vector<std::pair<types::global_dof_index, NodeInfo>> own;
       types::global_dof_index                                   jf = 0;
@@ -370,8 +355,8 @@ namespace Signorini
           info.pair = node.pair;
           own.emplace_back(owned_nodes[j], std::move(info));
         }
-      nodes.clear();
-      SetupCounts counts;
+      node_info.clear();
+      Counts counts;
       for (const auto &from_rank : Utilities::MPI::all_gather(comm, own))
         for (const auto &[dof0, info] : from_rank)
           {
@@ -379,43 +364,41 @@ namespace Signorini
             counts.n_excluded_friction +=
               !info.exclude_contact && info.exclude_friction;
             counts.n_hanging += !info.hanging.empty();
-            nodes.emplace(dof0, info);
+            node_info.emplace(dof0, info);
           }
 
-      owned_multipliers = IndexSet(n_system());
+      owned = IndexSet(n_system());
       if (n_owned_nodes > 0)
-        owned_multipliers.add_range(lambda_offset,
-                                    lambda_offset + n_owned_nodes);
+        owned.add_range(lambda_offset, lambda_offset + n_owned_nodes);
       if (n_owned_friction > 0)
-        owned_multipliers.add_range(friction_offset,
-                                    friction_offset +
-                                      n_owned_friction * (dim - 1));
-      owned_multipliers.compress();
+        owned.add_range(friction_offset,
+                        friction_offset + n_owned_friction * (dim - 1));
+      owned.compress();
       return counts;
     }
 
 
     template <int dim>
     void
-    ContactProblem<dim>::gather_master_faces(SurfaceScan &scan)
+    Surfaces<dim>::gather_master_faces(Scan &scan)
     {
       // The multipliers of this rank's slave faces (and of the parents of
-      // their hanging nodes) and the master faces' DoFs with those of
+      // their hanging node_info) and the master faces' DoFs with those of
       // their constraint lines are the ghosts of the contact rows.
       extra = IndexSet(n_system());
-      extra.add_indices(owned_multipliers);
+      extra.add_indices(owned);
       const auto add_node = [&](const types::global_dof_index dof0) {
-        const auto &info = nodes.at(dof0);
+        const auto &info = node_info.at(dof0);
         extra.add_index(info.lambda);
         if (info.friction != numbers::invalid_dof_index)
           extra.add_range(info.friction, info.friction + dim - 1);
       };
-      for (const auto &face : slave_faces)
+      for (const auto &face : slaves)
         for (unsigned int l = 0; l < face.node_local.size(); ++l)
           {
             const auto dof0 = face.node_dofs[l * dim];
             add_node(dof0);
-            for (const auto &h : nodes.at(dof0).hanging)
+            for (const auto &h : node_info.at(dof0).hanging)
               add_node(h.first);
           }
 
@@ -428,15 +411,15 @@ namespace Signorini
       for (unsigned int r = 0; r < all.size(); ++r)
         for (const auto &face : all[r])
           {
-            master_faces.push_back(face);
+            masters.push_back(face);
             if (r != rank)
-              master_faces.back().own_cell = -1;
+              masters.back().own_cell = -1;
             for (const auto d : face.dofs)
               extra.add_index(d);
           }
-      std::sort(master_faces.begin(),
-                master_faces.end(),
-                [](const MasterFace &a, const MasterFace &b) {
+      std::sort(masters.begin(),
+                masters.end(),
+                [](const MasterFace<dim> &a, const MasterFace<dim> &b) {
                   return a.key < b.key;
                 });
       // Constraint lines of master DoFs, from their owners (the first one
@@ -458,16 +441,17 @@ namespace Signorini
       // multiplier part of 'extra'. A u index there has no owner in such a
       // vector, and Epetra's import then shifts the ghost values it fills
       // (garbage at nodes on partition boundaries on 3 ranks).
-      multiplier_ghosts = IndexSet(n_system());
-      multiplier_ghosts.add_indices(extra.get_view(n_u, n_system()), n_u);
-      multiplier_ghosts.compress();
+      ghost_multipliers = IndexSet(n_system());
+      ghost_multipliers.add_indices(extra.get_view(n_displacements, n_system()),
+                                    n_displacements);
+      ghost_multipliers.compress();
 
       const auto &pairs = parameters.contact.pairs;
       for (unsigned int p = 0; p < pairs.size(); ++p)
         if (pairs[p].master_is_body() &&
-            std::none_of(master_faces.begin(),
-                         master_faces.end(),
-                         [p](const MasterFace &f) { return f.pair == p; }))
+            std::none_of(masters.begin(),
+                         masters.end(),
+                         [p](const MasterFace<dim> &f) { return f.pair == p; }))
           throw InputError(pair_name(p) +
                            ", parameter 'Master boundary id': no boundary "
                            "face of the mesh has these ids. Use ids the "
@@ -477,13 +461,13 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::finish_slave_faces()
+    Surfaces<dim>::finish_slave_faces(const std::vector<bool> &dual_pair)
     {
       // Multiplier numbers and exclusions of the slave faces' nodes; dual
       // multipliers (node-status pairs) on the faces without a hanging node
       // (whose multiplier interpolates its parents' and is no unknown of
       // its own: the face keeps psi there).
-      for (auto &face : slave_faces)
+      for (auto &face : slaves)
         {
           const unsigned int n_l = face.node_local.size();
           bool               hanging = false;
@@ -493,7 +477,7 @@ namespace Signorini
           face.excluded_friction.assign(n_l, false);
           for (unsigned int l = 0; l < n_l; ++l)
             {
-              const auto &info = nodes.at(face.node_dofs[l * dim]);
+              const auto &info = node_info.at(face.node_dofs[l * dim]);
               face.lambda_dofs.push_back(info.lambda);
               if (info.friction != numbers::invalid_dof_index)
                 for (unsigned int k = 0; k < dim - 1; ++k)
@@ -504,7 +488,7 @@ namespace Signorini
                 info.exclude_contact || info.exclude_friction;
             }
           face.dual.clear();
-          if (node_status_pair[face.pair] && !hanging)
+          if (dual_pair[face.pair] && !hanging)
             face.dual = dual_basis(face);
         }
     }
@@ -512,59 +496,7 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::print_setup(ConditionalOStream &pcout,
-                                     const SetupCounts  &counts) const
-    {
-      const auto        &pairs   = parameters.contact.pairs;
-      const unsigned int n_pairs = pairs.size();
-      const unsigned int n_points_total =
-        Utilities::MPI::sum(static_cast<unsigned int>(points.size()), comm);
-      pcout << "Contact: " << n_pairs << " pair(s), rule ";
-      if (mortar)
-        {
-          pcout << "mortar (segment-based, " << segment_order
-                << (dim == 2 ? " Gauss points per segment" :
-                               " points per direction on each triangle")
-                << ")";
-          for (const auto &obstacle : obstacles)
-            if (obstacle)
-              {
-                pcout << ", nodal on rigid masters";
-                break;
-              }
-        }
-      else
-        pcout << rule->name() << ", " << n_points_total << " contact points";
-      pcout << " on "
-            << Utilities::MPI::sum(
-                 static_cast<unsigned int>(slave_faces.size()), comm)
-            << " slave faces, " << n_lambda << " slave nodes" << std::endl;
-      for (unsigned int p = 0; p < n_pairs; ++p)
-        pcout << "  pair " << p + 1 << ": mu = " << pairs[p].friction
-              << ", h = " << std::setprecision(4) << face_size[p]
-              << ", rho_n = " << rho_n[p] << ", rho_t = " << rho_t[p]
-              << std::setprecision(6) << std::endl;
-      for (unsigned int p = 0; p < n_pairs; ++p)
-        if (obstacles[p] && !obstacles[p]->approximate_derivatives().empty())
-          pcout << "  pair " << p + 1 << ": "
-                << obstacles[p]->approximate_derivatives()
-                << ": the contact Jacobian is not exact" << std::endl;
-      if (counts.n_excluded_contact + counts.n_excluded_friction > 0)
-        pcout << "  over-constraint: " << counts.n_excluded_contact
-              << " slave node(s) with a Dirichlet condition along the normal "
-                 "excluded from contact, "
-              << counts.n_excluded_friction
-              << " with a tangential one excluded from friction" << std::endl;
-      if (counts.n_hanging > 0)
-        pcout << "  " << counts.n_hanging
-              << " hanging slave node(s): multipliers interpolated"
-              << std::endl;
-    }
-
-
-    template <int dim>
-    void
-    ContactProblem<dim>::add_constraint_lines(
+    Surfaces<dim>::add_constraint_lines(
       AffineConstraints<double> &constraints) const
     {
       const IndexSet &local = constraints.get_local_lines();
@@ -572,7 +504,7 @@ namespace Signorini
         return (local.size() == 0 || local.is_element(i)) &&
                !constraints.is_constrained(i);
       };
-      for (const auto &[dof0, info] : nodes)
+      for (const auto &[dof0, info] : node_info)
         {
           const bool has_friction = info.friction != numbers::invalid_dof_index;
           if (info.exclude_contact || !info.hanging.empty())
@@ -583,7 +515,7 @@ namespace Signorini
                   if (!info.exclude_contact)
                     for (const auto &[parent, w] : info.hanging)
                       constraints.add_entry(info.lambda,
-                                            nodes.at(parent).lambda,
+                                            node_info.at(parent).lambda,
                                             w);
                 }
             }
@@ -596,7 +528,7 @@ namespace Signorini
                   if (!info.exclude_contact && !info.exclude_friction)
                     for (const auto &[parent, w] : info.hanging)
                       constraints.add_entry(info.friction + k,
-                                            nodes.at(parent).friction + k,
+                                            node_info.at(parent).friction + k,
                                             w);
                 }
         }
@@ -609,7 +541,117 @@ namespace Signorini
     }
 
 
-    template class ContactProblem<2>;
-    template class ContactProblem<3>;
+    template <int dim>
+    std::vector<double>
+    Surfaces<dim>::dual_basis(const SlaveFace<dim> &face) const
+    {
+      // Face mass matrix M_lm = integral psi_l psi_m (with the weights of
+      // the contact points: reference Jacobian, 2 pi r if axisymmetric),
+      // D_l = sum_m M_lm; psi~ = D M^-1 psi is biorthogonal to psi.
+      const unsigned int    n = face.node_local.size();
+      const QGauss<dim - 1> gauss(parameters.fe_degree + 2);
+      FullMatrix<double>    M(n, n);
+      std::vector<double>   N;
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        {
+          face_shape_values<dim>(face.X.size(), gauss.point(q), N);
+          const auto   g = face_geometry<dim>(face.X, gauss.point(q));
+          const double w =
+            gauss.weight(q) * g.jacobian *
+            (parameters.axisymmetric ? 2 * numbers::PI * g.x[0] : 1.);
+          for (unsigned int k = 0; k < N.size(); ++k)
+            for (unsigned int kk = 0; kk < N.size(); ++kk)
+              M(face.k_node[k], face.k_node[kk]) += w * N[k] * N[kk];
+        }
+      std::vector<double> D(n, 0.);
+      for (unsigned int l = 0; l < n; ++l)
+        for (unsigned int m = 0; m < n; ++m)
+          D[l] += M(l, m);
+      FullMatrix<double> M_inverse(n, n);
+      M_inverse.invert(M);
+      std::vector<double> dual(n * n);
+      for (unsigned int l = 0; l < n; ++l)
+        for (unsigned int m = 0; m < n; ++m)
+          dual[l * n + m] = D[l] * M_inverse(l, m);
+      return dual;
+    }
+
+
+    template <int dim>
+    Point<dim>
+    Surfaces<dim>::slave_position(
+      const unsigned int                   f,
+      const std::vector<double>           &psi,
+      const Point<dim>                    &x_ref,
+      const TrilinosWrappers::MPI::Vector &state) const
+    {
+      const auto &face = slaves[f];
+      Point<dim>  x    = x_ref;
+      for (unsigned int l = 0; l < psi.size(); ++l)
+        for (unsigned int c = 0; c < dim; ++c)
+          x[c] += psi[l] * state[face.node_dofs[l * dim + c]];
+      return x;
+    }
+
+
+    template <int dim>
+    Point<dim>
+    Surfaces<dim>::master_position(
+      const unsigned int                   m,
+      const std::vector<double>           &N,
+      const TrilinosWrappers::MPI::Vector &state) const
+    {
+      const auto &face = masters[m];
+      Point<dim>  x;
+      for (unsigned int k = 0; k < face.X.size(); ++k)
+        for (unsigned int c = 0; c < dim; ++c)
+          x[c] += N[k] * (face.X[k][c] + state[face.dofs[k * dim + c]]);
+      return x;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    Surfaces<dim>::master_increment(
+      const unsigned int                   m,
+      const std::vector<double>           &N,
+      const TrilinosWrappers::MPI::Vector &state,
+      const TrilinosWrappers::MPI::Vector &start) const
+    {
+      const auto    &face = masters[m];
+      Tensor<1, dim> du;
+      for (unsigned int k = 0; k < face.X.size(); ++k)
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            const auto d = face.dofs[k * dim + c];
+            du[c] += N[k] * (state[d] - start[d]);
+          }
+      return du;
+    }
+
+
+    template <int dim>
+    void
+    Surfaces<dim>::master_nodes(const unsigned int                   m,
+                                const TrilinosWrappers::MPI::Vector &state,
+                                std::vector<Point<dim>>             &x,
+                                Point<dim> &inside) const
+    {
+      const auto &face = masters[m];
+      x.resize(face.X.size());
+      Tensor<1, dim> mean_u;
+      for (unsigned int k = 0; k < face.X.size(); ++k)
+        {
+          x[k] = face.X[k];
+          for (unsigned int c = 0; c < dim; ++c)
+            x[k][c] += state[face.dofs[k * dim + c]];
+          mean_u += (x[k] - face.X[k]) / double(face.X.size());
+        }
+      inside = face.inside + mean_u;
+    }
+
+
+    template class Surfaces<2>;
+    template class Surfaces<3>;
   } // namespace Contact
 } // namespace Signorini

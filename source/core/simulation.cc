@@ -237,14 +237,16 @@ namespace Signorini
     if (contact->active())
       {
         contact->setup(constraints_update, locally_owned, pcout);
-        const auto n_system = contact->n_system();
+        const auto n_system = contact->contact_surfaces().n_system();
         owned_system        = IndexSet(n_system);
         owned_system.add_indices(locally_owned);
-        owned_system.add_indices(contact->locally_owned_multipliers());
+        owned_system.add_indices(
+          contact->contact_surfaces().owned_multipliers());
         owned_system.compress();
         relevant_system = IndexSet(n_system);
         relevant_system.add_indices(locally_relevant);
-        relevant_system.add_indices(contact->extra_relevant());
+        relevant_system.add_indices(
+          contact->contact_surfaces().extra_relevant());
         relevant_system.add_indices(owned_system);
         relevant_system.compress();
         make_constraints(0.);
@@ -266,8 +268,8 @@ namespace Signorini
                       parameters.axisymmetric,
                       mpi_communicator);
     if (contact->active())
-      linear_solver->set_multipliers(dof_handler.n_dofs(),
-                                     contact->locally_owned_multipliers());
+      linear_solver->set_multipliers(
+        dof_handler.n_dofs(), contact->contact_surfaces().owned_multipliers());
   }
 
 
@@ -393,8 +395,8 @@ namespace Signorini
       }
     if (contact->active() && owned_system.size() > dof_handler.n_dofs())
       {
-        contact->add_constraint_lines(constraints_values);
-        contact->add_constraint_lines(constraints_update);
+        contact->contact_surfaces().add_constraint_lines(constraints_values);
+        contact->contact_surfaces().add_constraint_lines(constraints_update);
       }
     constraints_values.close();
     constraints_update.close();

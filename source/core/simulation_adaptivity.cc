@@ -176,8 +176,8 @@ namespace Signorini
           << triangulation.n_global_active_cells() << " cells, "
           << dof_handler.n_dofs() << " displacement DoFs";
     if (contact->active())
-      pcout << ", " << contact->n_lambda_dofs() << " lambda, "
-            << contact->n_friction_dofs() << " Lambda";
+      pcout << ", " << contact->contact_surfaces().n_lambda() << " lambda, "
+            << contact->contact_surfaces().n_friction() << " Lambda";
     pcout << std::endl;
     return true;
   }

@@ -288,9 +288,9 @@ namespace Signorini
     // the first iterate after they close it is zero (formulation.md 3.3),
     // and while every point slips there is no tangential stiffness. The
     // motion's share of the update is then set to zero for this solve.
-    const bool friction_may_hold = contact->active() &&
-                                   contact->n_friction_dofs() > 0 &&
-                                   contact_statistics.n_contact > 0;
+    const bool friction_may_hold =
+      contact->active() && contact->contact_surfaces().n_friction() > 0 &&
+      contact_statistics.n_contact > 0;
     if (!friction_may_hold)
       throw RunError(
         "load step " + std::to_string(history_step) + ", Newton iterate " +
@@ -402,7 +402,7 @@ namespace Signorini
   {
     const types::global_dof_index n_u = dof_handler.n_dofs();
     const types::global_dof_index n_l =
-      contact->active() ? contact->n_lambda_dofs() : 0;
+      contact->active() ? contact->contact_surfaces().n_lambda() : 0;
     std::array<double, 3> block = {{0, 0, 0}};
     for (const auto i : owned_system)
       block[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)] +=

@@ -112,10 +112,10 @@ namespace Signorini
       {
         pcout << "    Newton " << std::setw(2) << iteration << ": |R_u| "
               << shown(block[0]) << " |R_lambda| " << shown(block[1]);
-        if (contact->n_friction_dofs() > 0)
+        if (contact->contact_surfaces().n_friction() > 0)
           pcout << " |R_Lambda| " << shown(block[2]);
         pcout << std::defaultfloat << "  contact " << st.n_contact;
-        if (contact->n_friction_dofs() > 0)
+        if (contact->contact_surfaces().n_friction() > 0)
           pcout << " (stick " << st.n_stick << ", slip " << st.n_slip << ")";
         pcout << " free " << st.n_points - st.n_contact << " changed "
               << st.n_changed;

@@ -61,9 +61,9 @@ namespace Signorini
                 << std::endl;
     if (contact->active())
       pcout << "DoFs per block: u " << dof_handler.n_dofs() << ", lambda "
-            << contact->n_lambda_dofs() << ", Lambda "
-            << contact->n_friction_dofs() << " (total "
-            << contact->n_system() << ")" << std::endl;
+            << contact->contact_surfaces().n_lambda() << ", Lambda "
+            << contact->contact_surfaces().n_friction() << " (total "
+            << contact->contact_surfaces().n_system() << ")" << std::endl;
   }
 
 

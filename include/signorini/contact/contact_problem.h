@@ -17,14 +17,15 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/bulk/assembler.h>
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/contact_point.h>
 #include <signorini/contact/integration_rule.h>
 #include <signorini/contact/obstacles/interface.h>
 #include <signorini/contact/projection.h>
 #include <signorini/contact/surface_data.h>
+#include <signorini/contact/surfaces.h>
 #include <signorini/core/parameters.h>
-#include <signorini/bulk/assembler.h>
 
 #include <limits>
 #include <map>
@@ -38,16 +39,9 @@
  * or rigid analytic obstacles), the pairing of contact points, and the
  * assembly of the contact residual and its exact Jacobian.
  *
- * Unknowns are numbered in one system index space
- *   [0, n_u)                       displacement u (the DoFHandler's numbers)
- *   [n_u, n_u + n_l)               lambda, one per slave node
- *   [n_u + n_l, n_system)          Lambda, dim-1 per node of a frictional pair
- * A slave node is owned by the rank that owns its x-displacement DoF.
- *
- * Parallel data: every rank keeps the master faces of all ranks (positions
- * of their nodes and DoF numbers: surface data only), the multiplier numbers
- * of all slave nodes, and the constraint lines of the master DoFs; slave
- * contact points are treated by the rank that owns the slave cell.
+ * The surfaces, their slave nodes and the numbering of the multipliers
+ * after the displacements are a Surfaces object (surfaces.h); slave contact
+ * points are treated by the rank that owns the slave cell.
  *
  * Rows of the multiplier equations are scaled by rho_n (lambda rows) and
  * rho_t (Lambda rows) of their pair, so that the residual of the active rows
@@ -56,8 +50,8 @@
  *
  * The members are defined by concern in source/contact/:
  *   contact_problem.cc      construction, coefficients, point data, couplings
- *   surfaces.cc             setup: faces, multiplier numbering, exclusions,
- *                           constraint lines
+ *   surfaces.cc             class Surfaces: faces, multiplier numbering,
+ *                           exclusions, constraint lines, positions X + u
  *   pairing.cc              search, projection, mortar segmentation
  *   statuses.cc             statuses per node, initial multipliers
  *   active_set_history.cc   anti-cycling, freezes, releases, extrapolation,
@@ -158,42 +152,14 @@ namespace Signorini
             const IndexSet &                 locally_owned_u,
             ConditionalOStream &             pcout);
 
-      types::global_dof_index
-      n_system() const
+      /** The contact surfaces: faces, slave nodes, multiplier numbering
+       * (surfaces.h). */
+      const Surfaces<dim> &
+      contact_surfaces() const
       {
-        return n_u + n_lambda + n_friction;
-      }
-      types::global_dof_index
-      n_lambda_dofs() const
-      {
-        return n_lambda;
-      }
-      types::global_dof_index
-      n_friction_dofs() const
-      {
-        return n_friction;
+        return surfaces;
       }
 
-      /** Owned multiplier indices (system numbering). */
-      const IndexSet &
-      locally_owned_multipliers() const
-      {
-        return owned_multipliers;
-      }
-
-      /** Indices (system numbering) this rank reads or writes besides its
-       * locally relevant displacement DoFs: master face DoFs, multipliers
-       * of its slave faces and constraint parents. */
-      const IndexSet &
-      extra_relevant() const
-      {
-        return extra;
-      }
-
-      /** Adds the multiplier lines (hanging slave nodes, excluded nodes) and
-       * the master DoF lines known to other ranks to @p constraints. */
-      void
-      add_constraint_lines(AffineConstraints<double> &constraints) const;
 
       /**
        * Pairs every contact point (geometric iteration, formulation.md 7):
@@ -487,61 +453,14 @@ namespace Signorini
       std::vector<typename DoFHandler<dim>::active_cell_iterator>
       contact_zone_cells() const;
 
-      /** Number of slave nodes (= lambda DoFs). */
-      unsigned int
-      n_slave_nodes() const
-      {
-        return n_nodes_total;
-      }
 
     private:
-
-
-      // What setup() collects (surfaces.cc).
-      struct SurfaceScan;
-      // Counts setup() prints.
-      struct SetupCounts
-      {
-        unsigned int n_excluded_contact = 0, n_excluded_friction = 0,
-                     n_hanging = 0;
-      };
-      /** The slave faces (all seen, owned ones kept), the slave nodes and
-       * the owned master faces of this rank's boundary. */
-      SurfaceScan
-      scan_boundary(const AffineConstraints<double> &u_constraints);
+      /** rho_n, rho_t and p_ref per pair (setup()). */
       void
-      add_slave_face(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                     const unsigned int                                    f,
-                     const unsigned int                                    p,
-                     const std::vector<types::global_dof_index> &cell_dofs,
-                     SurfaceScan                                &scan);
+      set_coefficients();
       void
-      add_master_face(
-        const typename DoFHandler<dim>::active_cell_iterator &cell,
-        const unsigned int                                    f,
-        const unsigned int                                    p,
-        const std::vector<types::global_dof_index>           &cell_dofs,
-        const AffineConstraints<double>                      &u_constraints,
-        SurfaceScan                                          &scan);
-      /** rho_n, rho_t, p_ref, the face size and E per pair. */
-      void
-      set_coefficients(const SurfaceScan &scan);
-      /** Numbers the multipliers of the owned slave nodes after the
-       * displacements, decides their exclusions and hanging weights, and
-       * gathers every node's from all ranks into 'nodes'. */
-      SetupCounts
-      number_multipliers(const SurfaceScan               &scan,
-                         const IndexSet                  &owned_u,
-                         const AffineConstraints<double> &u_constraints);
-      /** Master faces and the constraint lines of their DoFs from all
-       * ranks; the ghost index sets 'extra' and 'multiplier_ghosts'. */
-      void
-      gather_master_faces(SurfaceScan &scan);
-      /** Multiplier DoFs, exclusions and dual basis of each slave face. */
-      void
-      finish_slave_faces();
-      void
-      print_setup(ConditionalOStream &pcout, const SetupCounts &counts) const;
+      print_setup(ConditionalOStream                   &pcout,
+                  const typename Surfaces<dim>::Counts &counts) const;
 
       LawParameters
       law_parameters(const unsigned int pair) const;
@@ -677,8 +596,14 @@ namespace Signorini
 
       /** Current position X + u of a contact point. */
       Point<dim>
-      slave_position(const ContactPoint &                 point,
-                     const TrilinosWrappers::MPI::Vector &state) const;
+      slave_position(const ContactPoint                  &point,
+                     const TrilinosWrappers::MPI::Vector &state) const
+      {
+        return surfaces.slave_position(point.face,
+                                       point.psi,
+                                       point.x_ref,
+                                       state);
+      }
 
       /** g of formulation.md 2 at @p point (-max if unpaired). */
       double
@@ -726,9 +651,6 @@ namespace Signorini
                  const TrilinosWrappers::MPI::Vector &state,
                  const TrilinosWrappers::MPI::Vector &start) const;
 
-      /** The dual multiplier basis of @p face (SlaveFace::dual). */
-      std::vector<double>
-      dual_basis(const SlaveFace &face) const;
 
 
       /** Takes the projection @p proj onto a master face as the point's:
@@ -738,16 +660,9 @@ namespace Signorini
       {
         point.xi_m   = proj.xi;
         point.normal = proj.normal;
-        face_shape_values<dim>(face_fe.n_dofs_per_cell(), proj.xi, point.N_m);
+        face_shape_values<dim>(surfaces.n_face_nodes(), proj.xi, point.N_m);
       }
 
-      /** Current positions of the support points of master face @p m and
-       * a point inside its cell (orientation of the normal). */
-      void
-      master_face_position(const unsigned int                   m,
-                           const TrilinosWrappers::MPI::Vector &state,
-                           std::vector<Point<dim>> &            x,
-                           Point<dim> &                         inside) const;
 
       // The assembly of one contact point (source/contact/assembly.cc,
       // local_rows.cc; the data in source/contact/helpers.h).
@@ -806,7 +721,7 @@ namespace Signorini
       const FESystem<dim> &  fe;
       const Bulk::Materials<dim> &materials;
       MPI_Comm comm;
-      FE_Q<dim - 1> face_fe; // master face parametrisation
+      Surfaces<dim>               surfaces;
 
       // The fixed rule; with the mortar rule, Gauss of the segment order
       // for the faces of rigid pairs (analytic master: nothing to cut).
@@ -818,7 +733,7 @@ namespace Signorini
       // master) and its value at the start of the current step.
       std::vector<std::unique_ptr<Obstacles::Motion<dim>>> motions;
       std::vector<Obstacles::RigidMotion<dim>>             motion_at_start;
-      std::vector<double> rho_n, rho_t, p_ref, face_size, youngs;         // per pair
+      std::vector<double> rho_n, rho_t, p_ref; // per pair
       std::vector<bool>   node_status_pair; // per pair
       // Newton on the geometry, per pair: frictionless rigid obstacles.
       std::vector<bool> newton_geometry_pair;
@@ -847,20 +762,7 @@ namespace Signorini
       unsigned int        n_newly_pinned = 0, pairings_in_step = 0;
       unsigned int        n_deep = 0; // points paired by pair_deep(), last pairing
 
-      types::global_dof_index n_u = 0, n_lambda = 0, n_friction = 0;
-      unsigned int            n_nodes_total = 0;
-      unsigned int            n_pieces      = 0; // mortar pieces (owned faces)
-      IndexSet                owned_multipliers, extra;
-      IndexSet multiplier_ghosts; // extra within the multiplier blocks
-
-      std::map<types::global_dof_index, NodeInfo> nodes; // key: x-dof
-      std::vector<SlaveFace>                      slave_faces;
-      std::vector<MasterFace>                     master_faces;
-      // The cells of the master faces this rank owns (MasterFace::own_cell).
-      std::vector<typename DoFHandler<dim>::active_cell_iterator>
-        own_master_cells;
-      // Constraint lines of master DoFs, from their owners.
-      std::vector<MasterLine> master_lines;
+      unsigned int n_pieces = 0; // mortar pieces (owned faces)
 
       std::vector<ContactPoint> points;
 
