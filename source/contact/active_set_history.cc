@@ -1,39 +1,38 @@
 // Active-set history across Newton and geometric iterations: anti-cycling
-// freezes, releases, release extrapolation.
-#include <deal.II/base/bounding_box.h>
+// freezes and their release, the freezes of the geometric loop, release
+// extrapolation.
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/quadrature_lib.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q1.h>
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/rtree.h>
 
-#include <signorini/contact/contact_problem.h>
-#include <signorini/contact/distributed_vectors.h>
-#include <signorini/contact/segmentation.h>
-#include <signorini/postprocess/output_files.h>
-
-#include "helpers.h"
+#include <signorini/contact/active_set_history.h>
 
 #include <boost/serialization/utility.hpp>
 
 #include <algorithm>
-#include <cmath>
-#include <fstream>
-#include <iomanip>
-#include <limits>
 #include <set>
 
 namespace Signorini
 {
   namespace Contact
   {
+    template <int dim>
+    ActiveSetHistory<dim>::ActiveSetHistory(
+      const ContactParameters &parameters,
+      const Surfaces<dim>     &surfaces,
+      const std::vector<bool> &node_status_pair,
+      const MPI_Comm           comm)
+        : parameters(parameters)
+        , surfaces(surfaces)
+        , node_status_pair(node_status_pair)
+        , comm(comm)
+    {
+    }
 
 
     template <int dim>
     void
-    ContactProblem<dim>::start_newton_solve()
+    ActiveSetHistory<dim>::start_newton_solve(Points          &points,
+                                              NodeFrictionMap &node_friction)
     {
       iterates_recorded = 0;
       node_cycle.clear();
@@ -62,7 +61,7 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::start_geometric_loop()
+    ActiveSetHistory<dim>::start_geometric_loop(Points &points) const
     {
       for (auto &point : points)
         {
@@ -76,14 +75,13 @@ namespace Signorini
           point.geometric.pinned_face = -1;
           clear_freeze(point);
         }
-      pairings_in_step = 0;
-      n_newly_pinned   = 0;
     }
 
 
     template <int dim>
     unsigned int
-    ContactProblem<dim>::end_geometric_iteration(const unsigned int g)
+    ActiveSetHistory<dim>::end_geometric_iteration(Points            &points,
+                                                   const unsigned int g) const
     {
       unsigned int       n            = 0;
       for (auto &point : points)
@@ -121,7 +119,8 @@ namespace Signorini
 
     template <int dim>
     unsigned int
-    ContactProblem<dim>::release_frozen(unsigned int &refrozen)
+    ActiveSetHistory<dim>::release_frozen(Points       &points,
+                                          unsigned int &refrozen)
     {
       unsigned int n = 0, again = 0;
       for (auto &point : points)
@@ -178,7 +177,7 @@ namespace Signorini
     // multiplier node of a node-status pair, with its class at this
     // iterate.
     template <int dim>
-    struct ContactProblem<dim>::ReleaseCarrier
+    struct ActiveSetHistory<dim>::Carrier
     {
       // tension: closed in the last solve, open now; compression: closed
       // both; open: both; entered: open in the last solve, closed now.
@@ -204,15 +203,17 @@ namespace Signorini
 
     template <int dim>
     unsigned int
-    ContactProblem<dim>::extrapolate_releases()
+    ActiveSetHistory<dim>::extrapolate_releases(
+      Points              &points,
+      const NodeStatusMap &node_active)
     {
-      const auto   carriers   = release_carriers();
+      const auto   carriers   = release_carriers(points, node_active);
       unsigned int n_released = 0;
       for (unsigned int p = 0; p < carriers.size(); ++p)
         // Frictionless pairs only: with friction the tension band does not
         // follow the halving (SSNV128 in one step: 9 -> 11 Newton).
-        if (law_parameters(p).mu == 0)
-          n_released += release_mirrored(carriers[p]);
+        if (parameters.pairs[p].friction == 0)
+          n_released += release_mirrored(points, carriers[p]);
       return Utilities::MPI::sum(n_released, comm);
     }
 
@@ -221,12 +222,11 @@ namespace Signorini
     // node-status pairs); a carrier released early and closed again is
     // kept closed for the rest of the Newton solve.
     template <int dim>
-    std::vector<std::vector<typename ContactProblem<dim>::ReleaseCarrier>>
-    ContactProblem<dim>::release_carriers()
+    std::vector<std::vector<typename ActiveSetHistory<dim>::Carrier>>
+    ActiveSetHistory<dim>::release_carriers(Points              &points,
+                                            const NodeStatusMap &node_active)
     {
-      using Carrier = ReleaseCarrier;
-      std::vector<std::vector<Carrier>> carriers(
-        parameters.contact.pairs.size());
+      std::vector<std::vector<Carrier>> carriers(parameters.pairs.size());
       for (unsigned int i = 0; i < points.size(); ++i)
         {
           auto              &point = points[i];
@@ -275,10 +275,10 @@ namespace Signorini
     // band are opened for this solve. Returns those released here.
     template <int dim>
     unsigned int
-    ContactProblem<dim>::release_mirrored(
-      const std::vector<ReleaseCarrier> &carriers)
+    ActiveSetHistory<dim>::release_mirrored(
+      Points                     &points,
+      const std::vector<Carrier> &carriers)
     {
-      using Carrier = ReleaseCarrier;
       // All carriers of the pair, from all ranks (position and class).
       std::vector<std::pair<Point<dim>, int>> mine;
       for (const auto &c : carriers)
@@ -360,7 +360,7 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::clear_releases()
+    ActiveSetHistory<dim>::clear_releases(Points &points)
     {
       for (auto &point : points)
         point.newton.release = false;
@@ -371,122 +371,174 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::record_point_status(ContactPoint          &point,
-                                             const PointEvaluation &e,
-                                             const bool         new_iterate,
-                                             ContactStatistics &stats)
+    ActiveSetHistory<dim>::count_point_cycle(ContactPoint<dim>    &point,
+                                             const PointStatus     status,
+                                             const Tensor<1, dim> &direction,
+                                             const bool            changed,
+                                             const bool            friction,
+                                             ContactStatistics    &stats) const
     {
-      const auto        &r            = e.r;
-      const bool         fric         = e.fric;
-      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
-      ++stats.n_points;
-      stats.n_unpaired += !point.paired;
-      if (r.in_contact)
+      const unsigned int freeze_after = parameters.freeze_after_cycles;
+      // Back to the status of two iterates before (a 2-cycle), or
+      // changed more than 2 N times (longer cycles).
+      point.newton.changes += changed;
+      const bool back = changed && iterates_recorded >= 2 &&
+                        ((status == point.newton.status_before &&
+                          (status != PointStatus::slip ||
+                           direction * point.newton.direction_before >= 0)) ||
+                         (point.newton.changes > 2 * freeze_after));
+      if (back)
         {
-          ++stats.n_contact;
-          if (fric && r.friction_active)
-            (r.status == PointStatus::stick ? stats.n_stick : stats.n_slip)++;
+          ++point.newton.cycles;
+          ++stats.n_cycling;
         }
-      // The status label of a law response ('slip' also for a closed point
-      // without friction).
-      const auto label = [fric](const PointResponse<dim> &response) {
-        return !response.in_contact ?
-                 PointStatus::free :
-                 (fric && response.friction_active ? response.status :
-                                                     PointStatus::slip);
-      };
-      const PointStatus status = label(r);
-      // A point that closed with a zero threshold (friction inactive,
-      // formulation.md 3.3) and one with friction on are different branches
-      // of the law even when both are labelled 'slip'. A slip direction that
-      // turned by more than 90 degrees (in 2D: reversed) is another branch
-      // of the slip law too.
-      const bool reversed = status == PointStatus::slip &&
-                            point.status == PointStatus::slip &&
-                            r.slip_direction * point.slip_direction < 0;
-      // (Node-status points: the node changes are counted instead.)
-      const bool changed =
-        !e.by_node && ((status != point.status) ||
-                       (r.friction_active != point.friction_active) || reversed);
-      stats.n_reversed += reversed;
-      stats.n_changed += changed;
-
-      // Anti-cycling (formulation.md 8), see start_newton_solve().
-      const bool frozen = point.newton.freeze_contact && !e.by_node;
-      if (frozen)
+      if (back && point.newton.cycles >= freeze_after &&
+          !point.newton.was_frozen)
         {
-          // What the plain law says at this iterate.
-          PointState<dim> plain       = e.s;
-          plain.freeze_contact        = false;
-          plain.frozen_slip_direction = Tensor<1, dim>();
-          plain.freeze_stick          = false;
-          const auto        rp = evaluate_contact_law(plain, e.point_law);
-          const PointStatus plain_status = label(rp);
-          ++stats.n_frozen;
-          const bool violated = plain_status != status ||
-                                (status == PointStatus::slip &&
-                                 rp.slip_direction * r.slip_direction < 0);
-          point.newton.plain_status    = plain_status;
-          point.newton.plain_direction = rp.slip_direction;
-          point.newton.plain_violated  = violated;
-          if (point.geometric.frozen)
-            {
-              ++stats.n_geometric_frozen;
-              stats.n_geometric_violated += violated;
-            }
-          else
-            stats.n_violated += violated;
+          // Freeze from the next evaluation on: in contact if the cycle
+          // went through 'free', slipping in the last slip direction if
+          // it went through stick or reversed.
+          point.newton.was_frozen = true;
+          ++stats.n_newly_frozen;
+          freeze_for_cycle(point,
+                           status,
+                           direction,
+                           point.status,
+                           point.slip_direction,
+                           friction);
         }
-      if (new_iterate && !frozen && !e.by_node)
-        {
-          // Back to the status of two iterates before (a 2-cycle), or
-          // changed more than 2 N times (longer cycles).
-          point.newton.changes += changed;
-          const bool back =
-            changed && iterates_recorded >= 2 &&
-            ((status == point.newton.status_before &&
-              (status != PointStatus::slip ||
-               r.slip_direction * point.newton.direction_before >= 0)) ||
-             (point.newton.changes > 2 * freeze_after));
-          if (back)
-            {
-              ++point.newton.cycles;
-              ++stats.n_cycling;
-            }
-          if (back && point.newton.cycles >= freeze_after &&
-              !point.newton.was_frozen)
-            {
-              // Freeze from the next evaluation on: in contact if the cycle
-              // went through 'free', slipping in the last slip direction if
-              // it went through stick or reversed.
-              point.newton.was_frozen = true;
-              ++stats.n_newly_frozen;
-              freeze_for_cycle(point,
-                               status,
-                               r.slip_direction,
-                               point.status,
-                               point.slip_direction,
-                               fric);
-            }
-        }
-      if (new_iterate)
-        {
-          point.newton.status_before    = point.status;
-          point.newton.direction_before = point.slip_direction;
-        }
-      point.status          = status;
-      point.friction_active = r.friction_active;
-      point.slip_direction  = r.slip_direction;
-      point.gap             = e.s.gap;
-      point.lambda          = e.lambda_shown;
-      point.Lambda          = e.s.Lambda;
-      point.force           = r.force;
-      for (unsigned int k = 0; k < dim - 1; ++k)
-        point.slip[k] = e.s.slip * e.s.tangents[k];
     }
 
 
-    template class ContactProblem<2>;
-    template class ContactProblem<3>;
+    template <int dim>
+    bool
+    ActiveSetHistory<dim>::friction_status_differs(
+      const NodeFriction<dim> *previous,
+      const NodeFriction<dim> &now)
+    {
+      if (!previous)
+        return now.active;
+      return previous->active != now.active || previous->stick != now.stick ||
+             (now.active && !now.stick && !previous->stick &&
+              previous->H * now.H < 0);
+    }
+
+
+    template <int dim>
+    NodeFriction<dim>
+    ActiveSetHistory<dim>::node_anti_cycling(const types::global_dof_index dof,
+                                             const NodeFriction<dim> &nf,
+                                             const NodeFriction<dim> *previous,
+                                             const bool         new_iterate,
+                                             const bool         owned,
+                                             ContactStatistics &stats)
+    {
+      const unsigned int freeze_after = parameters.freeze_after_cycles;
+      auto               found        = node_cycle.find(dof);
+      if (found == node_cycle.end())
+        {
+          NodeCycle<dim> c;
+          c.before = previous ? *previous : NodeFriction<dim>();
+          found    = node_cycle.emplace(dof, c).first;
+        }
+      NodeCycle<dim>   &c    = found->second;
+      NodeFriction<dim> used = nf;
+      // Frozen (only while the node is in contact with a threshold): the
+      // status of the freeze; the plain law's status is kept for the
+      // check at convergence (release_frozen()).
+      c.plain_violated = false;
+      if (c.freeze && nf.active)
+        {
+          used.frozen = true;
+          used.stick  = c.freeze_stick;
+          if (!c.freeze_stick)
+            used.H = c.q;
+          c.plain = nf;
+          c.plain_violated =
+            c.freeze_stick ? !nf.stick : (nf.stick || nf.H * c.q < 0);
+          if (owned)
+            {
+              ++stats.n_frozen;
+              stats.n_violated += c.plain_violated;
+            }
+        }
+      if (!new_iterate)
+        return used;
+      // A return to the status of two iterates back (a 2-cycle), or more
+      // than 2 N changes (longer cycles), as for points.
+      const bool changed =
+        friction_status_differs(previous, used) && !used.frozen;
+      c.changes += changed;
+      const bool back = changed && iterates_recorded >= 2 &&
+                        (!friction_status_differs(&c.before, used) ||
+                         (c.changes > 2 * freeze_after));
+      if (back)
+        {
+          ++c.cycles;
+          stats.n_cycling += owned;
+        }
+      // Frozen from the next evaluation on, slipping along the last slip
+      // direction of the cycle (the cycle went through stick, or reversed:
+      // then the current one).
+      if (back && c.cycles >= freeze_after && !c.was_frozen && used.active)
+        {
+          const Tensor<1, dim - 1> h =
+            !used.stick ? used.H :
+                          (previous && previous->active && !previous->stick ?
+                             previous->H :
+                             Tensor<1, dim - 1>());
+          if (h.norm() > 0)
+            {
+              c.was_frozen   = true;
+              c.freeze       = true;
+              c.freeze_stick = false;
+              c.q            = h / h.norm();
+              stats.n_newly_frozen += owned;
+            }
+        }
+      c.before = previous ? *previous : NodeFriction<dim>();
+      return used;
+    }
+
+
+    template <int dim>
+    void
+    ActiveSetHistory<dim>::clear_freeze(ContactPoint<dim> &point)
+    {
+      point.newton.freeze_contact        = false;
+      point.newton.frozen_slip_direction = Tensor<1, dim>();
+      point.newton.freeze_stick          = false;
+    }
+
+
+    template <int dim>
+    bool
+    ActiveSetHistory<dim>::freeze_for_cycle(
+      ContactPoint<dim>    &point,
+      const PointStatus     status,
+      const Tensor<1, dim> &direction,
+      const PointStatus     other,
+      const Tensor<1, dim> &other_direction,
+      const bool            friction)
+    {
+      if (status == PointStatus::free || other == PointStatus::free)
+        {
+          point.newton.freeze_contact = true;
+          return true;
+        }
+      if (!friction)
+        return false;
+      point.newton.freeze_contact = true;
+      if (status == PointStatus::slip && other == PointStatus::slip)
+        point.newton.freeze_stick = true;
+      else
+        point.newton.frozen_slip_direction =
+          status == PointStatus::slip ? direction : other_direction;
+      return true;
+    }
+
+
+    template class ActiveSetHistory<2>;
+    template class ActiveSetHistory<3>;
   } // namespace Contact
 } // namespace Signorini

@@ -1,6 +1,6 @@
 // Assembly of the contact residual and Jacobian: the point loop, and the
 // point state and law response of each point (its local rows are in
-// local_rows.cc, the status bookkeeping in active_set_history.cc).
+// local_rows.cc), and the status record of each evaluated point.
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
 
@@ -35,7 +35,7 @@ namespace Signorini
             decide_node_statuses(state, start, new_iterate, stats);
           // The statuses of the next solve (release extrapolation).
           if (matrix)
-            node_active_solved = node_active;
+            history.set_solved_node_statuses(node_active);
         }
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
@@ -90,8 +90,7 @@ namespace Signorini
         }
       flush();
 
-      if (new_iterate)
-        ++iterates_recorded;
+      history.end_evaluation(new_iterate);
       for (unsigned int *count : {&stats.n_points,
                                   &stats.n_unpaired,
                                   &stats.n_contact,
@@ -241,6 +240,94 @@ namespace Signorini
       // gap needs nothing more: at the closest point dg/du = n exactly.
       if (e.geometry_newton)
         e.r.dforce_dd += (e.r.force * s.normal) * e.dn_du;
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::record_point_status(ContactPoint          &point,
+                                             const PointEvaluation &e,
+                                             const bool             new_iterate,
+                                             ContactStatistics     &stats)
+    {
+      const auto &r    = e.r;
+      const bool  fric = e.fric;
+      ++stats.n_points;
+      stats.n_unpaired += !point.paired;
+      if (r.in_contact)
+        {
+          ++stats.n_contact;
+          if (fric && r.friction_active)
+            (r.status == PointStatus::stick ? stats.n_stick : stats.n_slip)++;
+        }
+      // The status label of a law response ('slip' also for a closed point
+      // without friction).
+      const auto label = [fric](const PointResponse<dim> &response) {
+        return !response.in_contact ?
+                 PointStatus::free :
+                 (fric && response.friction_active ? response.status :
+                                                     PointStatus::slip);
+      };
+      const PointStatus status = label(r);
+      // A point that closed with a zero threshold (friction inactive,
+      // formulation.md 3.3) and one with friction on are different branches
+      // of the law even when both are labelled 'slip'. A slip direction that
+      // turned by more than 90 degrees (in 2D: reversed) is another branch
+      // of the slip law too.
+      const bool reversed = status == PointStatus::slip &&
+                            point.status == PointStatus::slip &&
+                            r.slip_direction * point.slip_direction < 0;
+      // (Node-status points: the node changes are counted instead.)
+      const bool changed =
+        !e.by_node &&
+        ((status != point.status) ||
+         (r.friction_active != point.friction_active) || reversed);
+      stats.n_reversed += reversed;
+      stats.n_changed += changed;
+
+      // Anti-cycling (formulation.md 8), see start_newton_solve().
+      const bool frozen = point.newton.freeze_contact && !e.by_node;
+      if (frozen)
+        {
+          // What the plain law says at this iterate.
+          PointState<dim> plain       = e.s;
+          plain.freeze_contact        = false;
+          plain.frozen_slip_direction = Tensor<1, dim>();
+          plain.freeze_stick          = false;
+          const auto        rp = evaluate_contact_law(plain, e.point_law);
+          const PointStatus plain_status = label(rp);
+          ++stats.n_frozen;
+          const bool violated = plain_status != status ||
+                                (status == PointStatus::slip &&
+                                 rp.slip_direction * r.slip_direction < 0);
+          point.newton.plain_status    = plain_status;
+          point.newton.plain_direction = rp.slip_direction;
+          point.newton.plain_violated  = violated;
+          if (point.geometric.frozen)
+            {
+              ++stats.n_geometric_frozen;
+              stats.n_geometric_violated += violated;
+            }
+          else
+            stats.n_violated += violated;
+        }
+      if (new_iterate && !frozen && !e.by_node)
+        history.count_point_cycle(
+          point, status, r.slip_direction, changed, fric, stats);
+      if (new_iterate)
+        {
+          point.newton.status_before    = point.status;
+          point.newton.direction_before = point.slip_direction;
+        }
+      point.status          = status;
+      point.friction_active = r.friction_active;
+      point.slip_direction  = r.slip_direction;
+      point.gap             = e.s.gap;
+      point.lambda          = e.lambda_shown;
+      point.Lambda          = e.s.Lambda;
+      point.force           = r.force;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        point.slip[k] = e.s.slip * e.s.tangents[k];
     }
 
 

@@ -46,8 +46,9 @@ namespace Signorini
         , fe(fe)
         , materials(materials)
         , comm(comm)
-        , obstacles(std::move(obstacles_in))
         , surfaces(parameters, mapping, fe, dof_handler, materials, comm)
+        , obstacles(std::move(obstacles_in))
+        , history(parameters.contact, surfaces, node_status_pair, comm)
     {
       const auto &contact = parameters.contact;
       mortar              = contact.rule == IntegrationRule::mortar;
@@ -441,8 +442,7 @@ namespace Signorini
       std::vector<ContactPoint>                       points;
       std::map<types::global_dof_index, bool>         node_active;
       std::map<types::global_dof_index, NodeFriction> node_friction;
-      std::map<types::global_dof_index, NodeCycle>    node_cycle;
-      unsigned int                                    iterates_recorded;
+      typename ActiveSetHistory<dim>::Snapshot        history;
     };
 
 
@@ -450,8 +450,8 @@ namespace Signorini
     std::shared_ptr<const typename ContactProblem<dim>::PointsState>
     ContactProblem<dim>::save_points() const
     {
-      return std::make_shared<const PointsState>(PointsState{
-        points, node_active, node_friction, node_cycle, iterates_recorded});
+      return std::make_shared<const PointsState>(
+        PointsState{points, node_active, node_friction, history.save()});
     }
 
 
@@ -459,11 +459,10 @@ namespace Signorini
     void
     ContactProblem<dim>::restore_points(const PointsState &saved)
     {
-      points            = saved.points;
-      node_active       = saved.node_active;
-      node_friction     = saved.node_friction;
-      node_cycle        = saved.node_cycle;
-      iterates_recorded = saved.iterates_recorded;
+      points        = saved.points;
+      node_active   = saved.node_active;
+      node_friction = saved.node_friction;
+      history.restore(saved.history);
     }
 
 

@@ -211,7 +211,7 @@ namespace Signorini
                                                   G_read[dof],
                                                   D_read[dof],
                                                   rho_n[face.pair]) &&
-                                  node_release.count(dof) == 0;
+                                  !history.node_released(dof);
               const auto it = node_active.find(dof);
               if (it != node_active.end() && it->second == active)
                 continue;
@@ -254,104 +254,16 @@ namespace Signorini
                 const bool owned = surfaces.owned_multipliers().is_element(dof);
                 const auto *previous =
                   it == node_friction.end() ? nullptr : &it->second;
-                const auto used = node_anti_cycling(
+                const auto used = history.node_anti_cycling(
                   dof, nf, previous, new_iterate, owned, stats);
-                if (owned && friction_status_differs(previous, used))
+                if (owned &&
+                    ActiveSetHistory<dim>::friction_status_differs(previous,
+                                                                   used))
                   ++changed;
                 node_friction[dof] = used;
               }
           }
       return changed;
-    }
-
-
-    template <int dim>
-    bool
-    ContactProblem<dim>::friction_status_differs(const NodeFriction *previous,
-                                                 const NodeFriction &now)
-    {
-      if (!previous)
-        return now.active;
-      return previous->active != now.active || previous->stick != now.stick ||
-             (now.active && !now.stick && !previous->stick &&
-              previous->H * now.H < 0);
-    }
-
-
-    template <int dim>
-    typename ContactProblem<dim>::NodeFriction
-    ContactProblem<dim>::node_anti_cycling(const types::global_dof_index dof,
-                                           const NodeFriction           &nf,
-                                           const NodeFriction *previous,
-                                           const bool          new_iterate,
-                                           const bool          owned,
-                                           ContactStatistics  &stats)
-    {
-      const unsigned int freeze_after = parameters.contact.freeze_after_cycles;
-      auto               found        = node_cycle.find(dof);
-      if (found == node_cycle.end())
-        {
-          NodeCycle c;
-          c.before = previous ? *previous : NodeFriction();
-          found    = node_cycle.emplace(dof, c).first;
-        }
-      NodeCycle   &c    = found->second;
-      NodeFriction used = nf;
-      // Frozen (only while the node is in contact with a threshold): the
-      // status of the freeze; the plain law's status is kept for the
-      // check at convergence (release_frozen()).
-      c.plain_violated = false;
-      if (c.freeze && nf.active)
-        {
-          used.frozen = true;
-          used.stick  = c.freeze_stick;
-          if (!c.freeze_stick)
-            used.H = c.q;
-          c.plain = nf;
-          c.plain_violated =
-            c.freeze_stick ? !nf.stick : (nf.stick || nf.H * c.q < 0);
-          if (owned)
-            {
-              ++stats.n_frozen;
-              stats.n_violated += c.plain_violated;
-            }
-        }
-      if (!new_iterate)
-        return used;
-      // A return to the status of two iterates back (a 2-cycle), or more
-      // than 2 N changes (longer cycles), as for points.
-      const bool changed =
-        friction_status_differs(previous, used) && !used.frozen;
-      c.changes += changed;
-      const bool back = changed && iterates_recorded >= 2 &&
-                        (!friction_status_differs(&c.before, used) ||
-                         (c.changes > 2 * freeze_after));
-      if (back)
-        {
-          ++c.cycles;
-          stats.n_cycling += owned;
-        }
-      // Frozen from the next evaluation on, slipping along the last slip
-      // direction of the cycle (the cycle went through stick, or reversed:
-      // then the current one).
-      if (back && c.cycles >= freeze_after && !c.was_frozen && used.active)
-        {
-          const Tensor<1, dim - 1> h =
-            !used.stick ? used.H :
-                          (previous && previous->active && !previous->stick ?
-                             previous->H :
-                             Tensor<1, dim - 1>());
-          if (h.norm() > 0)
-            {
-              c.was_frozen   = true;
-              c.freeze       = true;
-              c.freeze_stick = false;
-              c.q            = h / h.norm();
-              stats.n_newly_frozen += owned;
-            }
-        }
-      c.before = previous ? *previous : NodeFriction();
-      return used;
     }
 
 

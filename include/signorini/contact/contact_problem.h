@@ -18,8 +18,10 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <signorini/bulk/assembler.h>
+#include <signorini/contact/active_set_history.h>
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/contact_point.h>
+#include <signorini/contact/contact_statistics.h>
 #include <signorini/contact/integration_rule.h>
 #include <signorini/contact/obstacles/interface.h>
 #include <signorini/contact/projection.h>
@@ -54,8 +56,8 @@
  *                           exclusions, constraint lines, positions X + u
  *   pairing.cc              search, projection, mortar segmentation
  *   statuses.cc             statuses per node, initial multipliers
- *   active_set_history.cc   anti-cycling, freezes, releases, extrapolation,
- *                           the status record of an evaluated point
+ *   active_set_history.cc   class ActiveSetHistory: anti-cycling, freezes,
+ *                           releases, extrapolation
  *   assembly.cc             the point loop: point state and law response
  *   local_rows.cc           local residual and Jacobian of a point (point
  *                           path, re-projection, node friction rows)
@@ -68,26 +70,6 @@ namespace Signorini
   {
     using namespace dealii;
 
-    /** Counts and norms of one contact residual evaluation. */
-    struct ContactStatistics
-    {
-      unsigned int n_points   = 0; // all contact points
-      unsigned int n_unpaired = 0; // no master face found
-      unsigned int n_contact  = 0; // chi_c = 1
-      unsigned int n_stick    = 0;
-      unsigned int n_slip     = 0;
-      unsigned int n_changed  = 0; // status differs from the last evaluation
-      unsigned int n_reversed = 0; // slip direction turned by > 90 degrees
-      // Anti-cycling (formulation.md 8), counted at new iterates only:
-      unsigned int n_cycling  = 0; // points back to their status of k-2
-      unsigned int n_frozen   = 0; // points whose status is frozen now
-      unsigned int n_newly_frozen = 0; // frozen at this evaluation
-      unsigned int n_violated = 0; // frozen, but the plain law disagrees
-      // Frozen by the geometric loop (kept to the end of the load step),
-      // and among them those the plain law disagrees with.
-      unsigned int n_geometric_frozen   = 0;
-      unsigned int n_geometric_violated = 0;
-    };
 
     template <int dim>
     class ContactProblem
@@ -97,7 +79,6 @@ namespace Signorini
       using MasterFace   = Contact::MasterFace<dim>;
       using ContactPoint = Contact::ContactPoint<dim>;
       using NodeFriction = Contact::NodeFriction<dim>;
-      using NodeCycle    = Contact::NodeCycle<dim>;
 
     public:
       ContactProblem(const Parameters &     parameters,
@@ -218,69 +199,49 @@ namespace Signorini
                TrilinosWrappers::MPI::Vector &      contact_force,
                const bool                           new_iterate = false);
 
-      /**
-       * Anti-cycling (formulation.md 8). Each evaluation with @p new_iterate
-       * compares every point's status with its status two iterates back;
-       * a point that returns to it (A -> B -> A, stick/slip, contact/free
-       * or a slip reversal) has cycled. After 'Freeze after cycles' cycles
-       * in one Newton solve its status is frozen: a contact/free cycle keeps
-       * the point in contact, a stick/slip cycle keeps it slipping in its
-       * last slip direction, a slip reversal cycle (neither direction is
-       * consistent) keeps it sticking. Frozen points whose plain law
-       * disagrees at the converged iterate are counted (n_violated) and
-       * must be released by the caller. start_newton_solve() clears the
-       * history; release_frozen() lets every frozen point follow the plain
-       * law again (a point is frozen by a cycle at most once per Newton
-       * solve), except that a point with active friction contradicted for
-       * the first time is frozen again in the stick or slip status the
-       * plain law asks for (counted in @p refrozen). Returns the number of
-       * released points.
-       */
+      /** Anti-cycling within a Newton solve and at its convergence
+       * (ActiveSetHistory::start_newton_solve(), release_frozen()). */
       void
-      start_newton_solve();
+      start_newton_solve()
+      {
+        history.start_newton_solve(points, node_friction);
+      }
       unsigned int
-      release_frozen(unsigned int &refrozen);
+      release_frozen(unsigned int &refrozen)
+      {
+        return history.release_frozen(points, refrozen);
+      }
 
-      /**
-       * Release extrapolation (doc/robustness.md): call after the residual
-       * evaluation of an iterate that follows a solve, before the matrix
-       * assembly. Per pair whose contact zone only shrank at this iterate
-       * (points that were closed at the iterate before and are open now:
-       * the tension band T; none that opened before and closed now), every
-       * point still closed whose mirror image across its nearest point of
-       * T lies in T (the nearest point of the pair to the image is in T) is
-       * released for the next solve: near a smooth contact edge a too wide
-       * zone gives tension only in its outer half, so the band halves per
-       * plain solve and the mirror jumps to the edge. Frozen points and
-       * frictional pairs are left alone, and so is, for the rest of the
-       * Newton solve, a carrier that closed again after such a release.
-       * At most as many as the band holds and half of those in
-       * compression are released, the nearest to the band first. Returns
-       * the number of points released (over all ranks); clear_releases()
-       * ends their release after the matrix assembly.
-       */
+      /** Release extrapolation after the residual of an iterate that
+       * follows a solve, ended by clear_releases() after the matrix
+       * assembly (ActiveSetHistory::extrapolate_releases()). */
       unsigned int
-      extrapolate_releases();
+      extrapolate_releases()
+      {
+        return history.extrapolate_releases(points, node_active);
+      }
       void
-      clear_releases();
+      clear_releases()
+      {
+        history.clear_releases(points);
+      }
 
-      /**
-       * Anti-cycling across pairings (formulation.md 7.3 and 8). A point
-       * whose converged status at the end of geometric iteration g equals
-       * its status at the end of g-2 and differs from g-1 makes the fixed
-       * point on the geometry 2-cycle: each pairing selects the other
-       * status set. Its status is frozen as in a Newton cycle (contact;
-       * slip in the last slip direction; stick after a reversal) for the
-       * rest of the load step; Newton does not release it.
-       * start_geometric_loop() clears the history at the start of a step;
-       * end_geometric_iteration() records the statuses after the Newton
-       * solve of iteration @p g and returns the number of points newly
-       * frozen (over all ranks).
-       */
+      /** Anti-cycling across pairings, and the pairing 2-cycles of
+       * newly_pinned(), at the start of a load step; the statuses after
+       * the Newton solve of geometric iteration @p g, returning the number
+       * of points newly frozen (ActiveSetHistory). */
       void
-      start_geometric_loop();
+      start_geometric_loop()
+      {
+        history.start_geometric_loop(points);
+        pairings_in_step = 0;
+        n_newly_pinned   = 0;
+      }
       unsigned int
-      end_geometric_iteration(const unsigned int g);
+      end_geometric_iteration(const unsigned int g)
+      {
+        return history.end_geometric_iteration(points, g);
+      }
 
       /** Points the last pairing found deep inside the master body and
        * paired from the penetrated side (all ranks). */
@@ -465,46 +426,6 @@ namespace Signorini
       LawParameters
       law_parameters(const unsigned int pair) const;
 
-      /** Back to the plain contact law at @p point (anti-cycling). */
-      static void
-      clear_freeze(ContactPoint &point)
-      {
-        point.newton.freeze_contact        = false;
-        point.newton.frozen_slip_direction = Tensor<1, dim>();
-        point.newton.freeze_stick          = false;
-      }
-
-      /**
-       * Freezes @p point after a cycle between @p status (slip direction
-       * @p direction) and @p other (@p other_direction): in contact if the
-       * cycle went through 'free'; with friction, sticking if it reversed
-       * its slip and came back (neither direction is consistent), else
-       * slipping in the direction of its slip status. False if nothing is
-       * frozen (a frictionless cycle that never went through 'free').
-       */
-      static bool
-      freeze_for_cycle(ContactPoint &        point,
-                       const PointStatus     status,
-                       const Tensor<1, dim> &direction,
-                       const PointStatus     other,
-                       const Tensor<1, dim> &other_direction,
-                       const bool            friction)
-      {
-        if (status == PointStatus::free || other == PointStatus::free)
-          {
-            point.newton.freeze_contact = true;
-            return true;
-          }
-        if (!friction)
-          return false;
-        point.newton.freeze_contact = true;
-        if (status == PointStatus::slip && other == PointStatus::slip)
-          point.newton.freeze_stick = true;
-        else
-          point.newton.frozen_slip_direction =
-            status == PointStatus::slip ? direction : other_direction;
-        return true;
-      }
 
       /** A contact point of slave face @p f at @p xi with rule weight
        * @p w on the unit face (shape values, position, weight, normal). */
@@ -514,23 +435,6 @@ namespace Signorini
                  const Point<dim - 1> &xi,
                  const double          w) const;
 
-      /**
-       * Mortar rule: cuts every slave face of a meshed pair by the master
-       * faces at their current positions @p x_master (formulation.md 6)
-       * and rebuilds the contact points; a new point takes the last status
-       * of the nearest old point of its face.
-       */
-      /** Pairs one contact point at @p state with the master faces at
-       * @p x_master (rigid obstacle, pinned face, the mortar piece's face,
-       * else the search), records its pairing history and sets its normal
-       * and tangents; true if a pairing 2-cycle pinned it now. */
-      /** Release extrapolation (extrapolate_releases()): the status
-       * carriers of every pair, and one pair's releases. */
-      struct ReleaseCarrier;
-      std::vector<std::vector<ReleaseCarrier>>
-      release_carriers();
-      unsigned int
-      release_mirrored(const std::vector<ReleaseCarrier> &carriers);
       /** The force on the master at @p point from the multipliers
        * (law_checks()). */
       Tensor<1, dim>
@@ -553,6 +457,10 @@ namespace Signorini
       add_node_slip_samples(std::vector<TrilinosWrappers::MPI::Vector> &nodal,
                             const SlipScales                           &scales,
                             std::vector<LawCheck> &result) const;
+      /** Pairs one contact point at @p state with the master faces at
+       * @p x_master (rigid obstacle, pinned face, the mortar piece's face,
+       * else the search), records its pairing history and sets its normal
+       * and tangents; true if a pairing 2-cycle pinned it now. */
       bool
       pair_point(ContactPoint                                           &point,
                  const TrilinosWrappers::MPI::Vector                    &state,
@@ -580,6 +488,12 @@ namespace Signorini
                 const std::vector<std::vector<Point<dim>>> &           x_master,
                 const std::vector<Point<dim>> &                         inside,
                 const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
+      /**
+       * Mortar rule: cuts every slave face of a meshed pair by the master
+       * faces at their current positions @p x_master (formulation.md 6)
+       * and rebuilds the contact points; a new point takes the last status
+       * of the nearest old point of its face.
+       */
       void
       segment(const TrilinosWrappers::MPI::Vector &                  state,
               const std::vector<std::vector<Point<dim>>> &          x_master,
@@ -623,26 +537,6 @@ namespace Signorini
                            const bool                           new_iterate,
                            ContactStatistics &                  stats);
 
-      /** Stick/slip status (or a slip direction turned by more than 90
-       * degrees) of a node differs from @p previous (none: inactive). */
-      static bool
-      friction_status_differs(const NodeFriction *previous,
-                              const NodeFriction &now);
-
-      /** Anti-cycling of one node's friction status @p nf (decided by the
-       * plain law) at an evaluation: applies the node's freeze, records
-       * what the plain law says under it, and at a new iterate counts a
-       * return to the status of two iterates back against @p previous
-       * (the status of the last solve) and freezes after
-       * ContactParameters::freeze_after_cycles of them. Counts into
-       * @p stats when @p owned. */
-      NodeFriction
-      node_anti_cycling(const types::global_dof_index dof,
-                        const NodeFriction &          nf,
-                        const NodeFriction *          previous,
-                        const bool                    new_iterate,
-                        const bool                    owned,
-                        ContactStatistics &           stats);
 
       /** Tangent coordinates T^T v of the slip increment v of
        * formulation.md 2 at a paired @p point (from @p start). */
@@ -681,7 +575,7 @@ namespace Signorini
 
       /** Counts the status of an evaluated point into @p stats, runs its
        * anti-cycling at a new iterate, and stores its status and output
-       * values (active_set_history.cc). */
+       * values (assembly.cc). */
       void
       record_point_status(ContactPoint &         point,
                           const PointEvaluation &e,
@@ -748,17 +642,9 @@ namespace Signorini
       // contact, nonzero threshold), stick, and H_l = Lambda_l +
       // rho_t W_l / D_l with the weighted slip W_l (theory.md).
       std::map<types::global_dof_index, NodeFriction> node_friction;
-      std::map<types::global_dof_index, NodeCycle> node_cycle;
       std::vector<bool> friction_node_pair; // per pair
       bool              any_friction_node = false;
-      unsigned int        iterates_recorded = 0; // in this Newton solve
-      // Release extrapolation on node-status pairs: the node statuses of
-      // the last solve, the nodes open for the next solve, those opened
-      // that way for the last, and those that closed again after such a
-      // release (not released early again in this Newton solve).
-      std::map<types::global_dof_index, bool> node_active_solved;
-      std::set<types::global_dof_index> node_release, node_extrapolated,
-        node_kept;
+      ActiveSetHistory<dim> history;
       unsigned int        n_newly_pinned = 0, pairings_in_step = 0;
       unsigned int        n_deep = 0; // points paired by pair_deep(), last pairing
 
