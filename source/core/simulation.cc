@@ -72,6 +72,7 @@ namespace Signorini
       , linear_solver(
           std::make_unique<Solver::LinearSolver<dim>>(parameters.linear_solver))
       , postprocessors(Postprocess::make_postprocessors<dim>(parameters, prm))
+      , report(parameters, pcout, sout, mpi_communicator)
   {
     const auto &bc = parameters.boundary_conditions;
     for (unsigned int k = 0; k < bc.dirichlet.size(); ++k)

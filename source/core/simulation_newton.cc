@@ -98,8 +98,8 @@ namespace Signorini
         // pairings before keep one status for the rest of the step.
         if (const unsigned int n = contact->end_geometric_iteration(g); n > 0)
           {
-            cycle_detections += n;
-            points_frozen += n;
+            report.counts.cycle_detections += n;
+            report.counts.points_frozen += n;
             pcout << "    geometric loop: " << n
                   << " point(s) back at their status of two pairings before:"
                      " status frozen for the rest of the step"
@@ -169,8 +169,8 @@ namespace Signorini
               << std::endl;
       if (const unsigned int n = contact->newly_pinned(); n > 0)
         {
-          cycle_detections += n;
-          points_frozen += n;
+          report.counts.cycle_detections += n;
+          report.counts.points_frozen += n;
           pcout << "    geometric loop: " << n
                 << " point(s) back on their master face of two pairings"
                    " before: pinned to it for the rest of the step"
@@ -264,7 +264,7 @@ namespace Signorini
     const Solver::NewtonSolver solver(p, pcout, timer);
     last_newton = solver.solve(*this, force_scale, tolerance);
     iterations  = last_newton.iterations;
-    line_searches += last_newton.line_searches;
+    report.counts.line_searches += last_newton.line_searches;
     if (!last_newton.converged)
       {
         newton_failure_kind = last_newton.failure;

@@ -1,5 +1,5 @@
-// Results: reactions, postprocessors, VTU and CSV files, statistics, the
-// run summary.
+// Results: reactions, postprocessors, the contact CSV and the Newton
+// history (the step report and statistics.csv: postprocess/run_report.cc).
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/grid_refinement.h>
@@ -155,24 +155,18 @@ namespace Signorini
 
 
   // The step's report on screen (iterations, reactions, pairs, reference
-  // checks) and its statistics.csv line.
+  // checks) and its statistics.csv lines.
   template <int dim>
   std::string
-  Simulation<dim>::write_statistics(const unsigned int step,
-                                    const double       time,
-                                    const unsigned int newton_iterations)
+  Simulation<dim>::report_step(const unsigned int step,
+                               const double       time,
+                               const unsigned int newton_iterations)
   {
     // Largest displacement magnitude at the nodes.
     double u_max = 0;
     for (const auto i : locally_owned)
       u_max = std::max(u_max, std::abs(solution[i]));
     u_max = Utilities::MPI::max(u_max, mpi_communicator);
-    step_iterations.push_back(newton_iterations);
-    run_cuts += step_cuts;
-    run_cycles += cycle_detections;
-    run_frozen += points_frozen;
-    run_released += points_released;
-    run_line_searches += line_searches;
     // Contact pair summaries, their forces with round-off (relative to the
     // force level) set to zero so that output does not depend on the ranks.
     auto summary = contact->active() ?
@@ -183,215 +177,16 @@ namespace Signorini
       for (unsigned int d = 0; d < dim; ++d)
         if (std::abs(s.force[d]) < 1e-10 * force_scale)
           s.force[d] = 0;
-    print_step_report(newton_iterations, u_max);
-    if (contact->active())
-      print_pair_report(summary);
-    // The step's checks, also kept for the end of a quiet run.
-    last_checks.clear();
-    for (const auto &check : step_checks)
-      record_check(check.text, check.pass);
-    pcout << std::flush;
-    return statistics_lines(step, time, newton_iterations, u_max, summary);
-  }
-
-
-  template <int dim>
-  void
-  Simulation<dim>::record_check(const std::string &text, const bool pass)
-  {
-    last_checks.push_back(text);
-    n_failed_checks += !pass;
-    pcout << "  reference check: " << text << "\n";
-  }
-
-
-  // Newton and Krylov iterations, anti-cycling counts, the largest
-  // displacement and the reactions of the step.
-  template <int dim>
-  void
-  Simulation<dim>::print_step_report(const unsigned int newton_iterations,
-                                     const double       u_max)
-  {
-    pcout << "  Newton iterations: " << newton_iterations << "\n";
-    if (parameters.linear_solver.type != LinearSolverType::direct)
-      {
-        pcout << "  Krylov iterations: " << krylov_iterations
-              << " in this step, at most " << krylov_max << " per solve\n";
-        krylov_iterations = krylov_max = 0;
-      }
-    if (cycle_detections + points_frozen + points_released > 0)
-      pcout << "  anti-cycling: " << cycle_detections
-            << " status cycle(s) detected, " << points_frozen
-            << " point(s) frozen, " << points_released << " released\n";
-    pcout << "  max |u_i| = " << format(u_max) << "\n";
-    // Components below 1e-10 of the largest reaction are round-off (sums of
-    // nodal forces that cancel; with nu -> 0.5 lambda amplifies the
-    // round-off of the displacement) and are printed as 0 (the CSV keeps
-    // them).
-    double largest_reaction = 0;
-    for (const auto &r : reactions)
-      largest_reaction = std::max(largest_reaction, r.norm());
-    for (unsigned int k = 0; k < reactions.size(); ++k)
-      {
-        pcout << "  reaction Dirichlet " << k + 1 << " = (";
-        for (unsigned int d = 0; d < dim; ++d)
-          pcout << (d ? ", " : "")
-                << format(std::abs(reactions[k][d]) <
-                              1e-10 * largest_reaction ?
-                            0. :
-                            reactions[k][d],
-                          4);
-        pcout << ")\n";
-      }
-  }
-
-
-  // Per contact pair: closed points, force, largest pressure, and a note
-  // for a pair that closes nothing.
-  template <int dim>
-  void
-  Simulation<dim>::print_pair_report(
-    const std::vector<typename Contact::ContactProblem<dim>::PairSummary>
-      &summary)
-  {
-    for (unsigned int p = 0; p < summary.size(); ++p)
-      {
-        const auto &s = summary[p];
-        pcout << "  contact pair " << p + 1 << ": " << s.n_contact << " of "
-              << s.n_points << " points closed";
-        if (parameters.contact.pairs[p].friction > 0)
-          pcout << " (stick " << s.n_stick << ", slip " << s.n_slip << ")";
-        pcout << ", force on master = (";
-        for (unsigned int d = 0; d < dim; ++d)
-          pcout << (d ? ", " : "") << format(s.force[d], 4);
-        pcout << "), max p = " << format(s.p_max, 4) << "\n";
-        // An open pair near contact, or one whose points find no master
-        // face at all, is worth a word: bodies loaded towards each other
-        // that close no point pass through each other between the contact
-        // points (a coarse curved surface), or do not face each other (ids
-        // swapped, normals away).
-        if (s.n_contact == 0 && s.n_paired == 0)
-          pcout << "  note: pair " << p + 1
-                << ": no slave point finds the master within 'Contact/"
-                   "Projection tolerance': the surfaces do not face each "
-                   "other here (check the slave and master ids and the "
-                   "geometry)\n";
-        else if (s.n_contact == 0 && -s.max_gap < 0.5 * s.face_size)
-          pcout << "  note: pair " << p + 1
-                << " closes no contact point; the nearest is "
-                << format(-s.max_gap, 2) << " m from the master ("
-                << format(-s.max_gap / s.face_size, 2)
-                << " slave faces): if the bodies should touch here, the "
-                   "slave points may straddle the contact (refine the slave "
-                   "surface, or make the finer surface the slave)\n";
-      }
-  }
-
-
-  // The step's statistics.csv line, with the header at the first step (its
-  // columns follow the scene's conditions and pairs): force-displacement
-  // data of each Dirichlet condition (its reaction and the mean
-  // displacement it prescribes, constrained components only), each contact
-  // pair's force on the master, closed points and, for a rigid obstacle,
-  // its prescribed motion.
-  template <int dim>
-  std::string
-  Simulation<dim>::statistics_lines(
-    const unsigned int step,
-    const double       time,
-    const unsigned int newton_iterations,
-    const double       u_max,
-    const std::vector<typename Contact::ContactProblem<dim>::PairSummary>
-      &summary)
-  {
-    std::vector<std::string> row = {std::to_string(step),
-                                    format(time),
-                                    std::to_string(newton_iterations),
-                                    std::to_string(step_cuts),
-                                    std::to_string(cycle_detections),
-                                    std::to_string(points_frozen),
-                                    format(u_max)};
-    const bool header = statistics_header.empty();
-    if (header)
-      statistics_header = {"step",
-                           "time",
-                           "newton_iterations",
-                           "step_cuts",
-                           "cycle_detections",
-                           "points_frozen",
-                           "max_abs_u"};
-    const auto add_text = [&](const std::string &name, std::string value) {
-      if (header)
-        statistics_header.push_back(name);
-      row.push_back(std::move(value));
-    };
-    const auto add = [&](const std::string &name, const double value) {
-      add_text(name, format(value));
-    };
-    const char *axis[] = {"x", "y", "z"};
-    for (unsigned int k = 0; k < reactions.size(); ++k)
-      {
-        const std::string name = "_" + std::to_string(k + 1) + "_";
-        for (unsigned int d = 0; d < dim; ++d)
-          add("reaction" + name + axis[d], reactions[k][d]);
-        for (unsigned int d = 0; d < dim; ++d)
-          if (dirichlet_components[k][d])
-            add("displacement" + name + axis[d], dirichlet_displacement[k][d]);
-      }
-    for (unsigned int p = 0; p < summary.size(); ++p)
-      {
-        const std::string name = "_" + std::to_string(p + 1) + "_";
-        for (unsigned int d = 0; d < dim; ++d)
-          add("contact_force" + name + axis[d], summary[p].force[d]);
-        add_text("contact_points" + name + "closed",
-                 std::to_string(summary[p].n_contact));
-        if (parameters.contact.pairs[p].friction > 0)
-          {
-            add_text("contact_points" + name + "stick",
-                     std::to_string(summary[p].n_stick));
-            add_text("contact_points" + name + "slip",
-                     std::to_string(summary[p].n_slip));
-          }
-        if (summary[p].rigid)
-          for (unsigned int d = 0; d < dim; ++d)
-            add("obstacle_displacement" + name + axis[d],
-                summary[p].obstacle_displacement[d]);
-      }
-    add_postprocessor_columns(header, row);
-    const auto line = [](const std::vector<std::string> &fields) {
-      std::string text;
-      for (unsigned int c = 0; c < fields.size(); ++c)
-        text += (c ? "," : "") + fields[c];
-      return text + "\n";
-    };
-    return (header ? line(statistics_header) : std::string()) + line(row);
-  }
-
-
-  // The postprocessors' columns after the run's own: at the first step
-  // they extend the header, later the names must be the header's.
-  template <int dim>
-  void
-  Simulation<dim>::add_postprocessor_columns(const bool                header,
-                                             std::vector<std::string> &row)
-  {
-    for (const auto &column : postprocessor_columns.columns())
-      {
-        if (header)
-          statistics_header.push_back(column.name);
-        else if (row.size() >= statistics_header.size() ||
-                 statistics_header[row.size()] != column.name)
-          throw RunError("postprocessor '" + column.owner +
-                         "': the statistics column '" + column.name +
-                         "' stands where the first step's statistics.csv "
-                         "header has another; a postprocessor must add the "
-                         "same columns at every step.");
-        row.push_back(format(column.value));
-      }
-    if (row.size() != statistics_header.size())
-      throw RunError("statistics.csv: the postprocessors added fewer "
-                     "columns than at the first step; a postprocessor must "
-                     "add the same columns at every step.");
+    return report.report_step({step,
+                               time,
+                               newton_iterations,
+                               u_max,
+                               reactions,
+                               dirichlet_displacement,
+                               dirichlet_components,
+                               summary,
+                               postprocessor_columns,
+                               step_checks});
   }
 
 
@@ -411,22 +206,6 @@ namespace Signorini
         failure = history_file.append(lines);
       }
     newton_rows.clear();
-    check_output(failure);
-  }
-
-
-  template <int dim>
-  void
-  Simulation<dim>::append_statistics(const std::string &lines)
-  {
-    std::string failure;
-    if (parameters.output.write_csv &&
-        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      failure = statistics_file.is_open() ?
-                  statistics_file.append(lines) :
-                  statistics_file.open(parameters.output.directory +
-                                         "/statistics.csv",
-                                       lines);
     check_output(failure);
   }
 
@@ -496,8 +275,7 @@ namespace Signorini
     compute_reactions();
     run_postprocessors(step, time);
     append_newton_history();
-    const std::string statistics_lines =
-      write_statistics(step, time, iterations);
+    const std::string statistics_lines = report_step(step, time, iterations);
     if (contact->active() && parameters.output.write_csv)
       {
         std::ostringstream name;
@@ -507,8 +285,7 @@ namespace Signorini
       }
     // The step's line in statistics.csv last: a step listed there has
     // all its files on disk.
-    append_statistics(statistics_lines);
-    last_written_time = time;
+    report.append_statistics(statistics_lines);
   }
 
 
@@ -545,57 +322,6 @@ namespace Signorini
         for (auto &check : postprocessors[i]->execute(data))
           step_checks.push_back(std::move(check));
       }
-  }
-
-
-  template <int dim>
-  void
-  Simulation<dim>::print_run_summary(const unsigned int n_written,
-                                     const unsigned int stopped_in)
-  {
-    const unsigned int n_steps = parameters.load_stepping.step_times.size();
-    // What even a quiet run prints (sout): the last step's reference
-    // checks, the run summary, the Jacobian check, timing and memory.
-    if (parameters.output.verbosity == Verbosity::quiet && n_written > 0)
-      {
-        sout << (stopped_in > 0 ? "Last written step, t = " :
-                                  "Final step, t = ")
-             << format(last_written_time, 4) << "\n";
-        for (const auto &line : last_checks)
-          sout << "  reference check: " << line << "\n";
-      }
-    if ((n_steps > 1 || stopped_in > 0) && !step_iterations.empty())
-      {
-        // Newton iterations per load step (all geometric iterations and
-        // cut attempts of the step that converged): median and maximum.
-        // (Median of an even count: the mean of the two middle values.)
-        std::vector<unsigned int> sorted = step_iterations;
-        std::sort(sorted.begin(), sorted.end());
-        const std::size_t  m   = sorted.size();
-        const unsigned int sum = sorted[(m - 1) / 2] + sorted[m / 2];
-        sout << "Run summary";
-        if (stopped_in > 0)
-          sout << " (stopped in load step " << stopped_in << " of " << n_steps
-               << "): " << n_written << " load step(s) written";
-        else
-          sout << ": " << n_steps << " load steps";
-        sout << ", Newton iterations per step median " << sum / 2
-             << (sum % 2 ? ".5" : "") << ", max " << sorted.back()
-             << ", step cuts " << run_cuts;
-        if (contact->active())
-          sout << ", status cycles detected " << run_cycles
-               << ", points frozen " << run_frozen << ", released "
-               << run_released;
-        if (early_releases > 0)
-          sout << ", opened early (release extrapolation) "
-               << early_releases;
-        if (run_line_searches > 0)
-          sout << ", line searches " << run_line_searches;
-        sout << std::endl;
-      }
-    else if (stopped_in > 0)
-      sout << "Run summary (stopped in load step " << stopped_in << " of "
-           << n_steps << "): no load step written" << std::endl;
   }
 
 

@@ -87,8 +87,8 @@ namespace Signorini
     const auto &st = contact_statistics;
     if (contact->active())
       {
-        cycle_detections += st.n_cycling;
-        points_frozen += st.n_newly_frozen;
+        report.counts.cycle_detections += st.n_cycling;
+        report.counts.points_frozen += st.n_newly_frozen;
       }
     const auto  &block    = evaluation.block;
     const auto   relative = [&](const double r) {
@@ -176,8 +176,8 @@ namespace Signorini
   {
     unsigned int       refrozen = 0;
     const unsigned int n        = contact->release_frozen(refrozen);
-    points_released += n;
-    points_frozen += refrozen;
+    report.counts.points_released += n;
+    report.counts.points_frozen += refrozen;
     if (parameters.output.verbosity != Verbosity::quiet)
       {
         pcout << "    frozen point(s) that the contact law contradicts: " << n
@@ -202,7 +202,7 @@ namespace Signorini
       if (const unsigned int n = contact->extrapolate_releases(); n > 0)
         {
           n_early = n;
-          early_releases += n;
+          report.add_early_releases(n);
           if (parameters.output.verbosity != Verbosity::quiet)
             pcout << "    release extrapolation: " << n
                   << " point(s) opened for this solve" << std::endl;
@@ -218,8 +218,8 @@ namespace Signorini
     step.update.reinit(owned_system, mpi_communicator);
     const unsigned int krylov =
       linear_solver->solve(system_matrix, step.update, newton_rhs);
-    krylov_iterations += krylov;
-    krylov_max = std::max(krylov_max, krylov);
+    report.counts.krylov_iterations += krylov;
+    report.counts.krylov_max = std::max(report.counts.krylov_max, krylov);
     constraints_update.distribute(step.update);
     step.exact = krylov == 0 && n_early == 0;
     return step;

@@ -34,7 +34,7 @@ namespace Signorini
         print_step_header(step, t_done, start);
         t_done = run_load_step(step, t_done, stepper);
       }
-    print_run_summary(times.size());
+    report.print_run_summary(times.size(), 0);
     finish_run();
   }
 
@@ -111,7 +111,7 @@ namespace Signorini
   {
     const auto &times = parameters.load_stepping.step_times;
     history_step      = step;
-    cycle_detections = points_frozen = points_released = line_searches = 0;
+    report.start_step();
     Solver::StepProgress progress;
     progress.t_done      = t_done;
     progress.t_sub_start = t_done;
@@ -121,7 +121,7 @@ namespace Signorini
     if (adaptivity.steps == AdaptedSteps::every ||
         (adaptivity.steps == AdaptedSteps::last && step == times.size()))
       adapt_in_step(step, t_done, progress, stepper);
-    step_cuts = progress.cuts;
+    report.counts.step_cuts = progress.cuts;
     write_step_results(step, times[step - 1], progress.iterations);
     // 'Steps = between': the mesh follows the converged state; the next
     // step starts on it from the transferred state (its increment: the
@@ -197,13 +197,13 @@ namespace Signorini
     const bool partial = progress.t_done > t_step_start;
     if (partial)
       {
-        step_cuts = progress.cuts - 1;
+        report.counts.step_cuts = progress.cuts - 1;
         pcout << "  results of the last converged sub-step (t = "
               << format(progress.t_done, 4) << ") written as step " << step
               << std::endl;
         write_step_results(step, progress.t_done, progress.iterations);
       }
-    print_run_summary(step - (partial ? 0 : 1), step);
+    report.print_run_summary(step - (partial ? 0 : 1), step);
     throw RunError("load step " + std::to_string(step) +
                    " did not converge between t = " +
                    format(progress.t_done, 4) +
@@ -297,9 +297,9 @@ namespace Signorini
            << (jacobian_error_max < 1e-6 ? "PASS" : "FAIL")
            << std::defaultfloat << std::endl;
     if (jacobian_checked && !(jacobian_error_max < 1e-6))
-      ++n_failed_checks;
-    if (n_failed_checks > 0)
-      sout << "Reference checks: " << n_failed_checks
+      report.count_failed_check();
+    if (report.failed_checks() > 0)
+      sout << "Reference checks: " << report.failed_checks()
            << " FAIL(s) over the run; exit code 4" << std::endl;
     if (parameters.output.timing_summary)
       {

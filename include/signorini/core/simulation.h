@@ -19,6 +19,7 @@
 #include <signorini/core/parameters.h>
 #include <signorini/postprocess/interface.h>
 #include <signorini/postprocess/output_files.h>
+#include <signorini/postprocess/run_report.h>
 #include <signorini/solver/linear_solver.h>
 #include <signorini/solver/load_stepper.h>
 #include <signorini/solver/newton_solver.h>
@@ -99,7 +100,7 @@ namespace Signorini
     unsigned int
     failed_checks() const
     {
-      return n_failed_checks;
+      return report.failed_checks();
     }
 
     types::global_dof_index
@@ -244,11 +245,6 @@ namespace Signorini
     write_step_results(const unsigned int step,
                        const double       time,
                        const unsigned int iterations);
-    /** The run summary: after @p n_written steps, and with @p stopped_in >
-     * 0 for a run stopped in that load step. */
-    void
-    print_run_summary(const unsigned int n_written,
-                      const unsigned int stopped_in = 0);
     /** Before a solve: the rigid motions the assembled Jacobian does not
      * hold. With closed frictional points (friction that has no threshold
      * yet, or slips everywhere) they are held by springs for this solve;
@@ -272,43 +268,18 @@ namespace Signorini
     compute_reactions();
     void
     run_postprocessors(const unsigned int step, const double time);
-    /** Appends the postprocessors' statistics columns to @p row (and at
-     * the first step to the header); RunError where they differ. */
-    void
-    add_postprocessor_columns(const bool header, std::vector<std::string> &row);
     /** Output directory of the run: earlier results removed, parameters
      * echoed, newton_history.csv started. */
     void
     prepare_output();
-    /** Prints the step's statistics; returns its statistics.csv line. */
+    /** The step's report on screen; returns its statistics.csv lines. */
     std::string
-    write_statistics(const unsigned int step,
-                     const double       time,
-                     const unsigned int newton_iterations);
-    using PairSummaries =
-      std::vector<typename Contact::ContactProblem<dim>::PairSummary>;
-    void
-    print_step_report(const unsigned int newton_iterations, const double u_max);
-    void
-    print_pair_report(const PairSummaries &summary);
-    /** Prints a reference check and counts it if it failed. */
-    void
-    record_check(const std::string &text, const bool pass);
-    /** The statistics.csv line of the step (with the header first at the
-     * first step). */
-    std::string
-    statistics_lines(const unsigned int   step,
-                     const double         time,
-                     const unsigned int   newton_iterations,
-                     const double         u_max,
-                     const PairSummaries &summary);
+    report_step(const unsigned int step,
+                const double       time,
+                const unsigned int newton_iterations);
     /** Appends the Newton rows since the last call to newton_history.csv. */
     void
     append_newton_history();
-    /** Appends the step's @p lines to statistics.csv (the first call
-     * creates it; @p lines then start with the header). */
-    void
-    append_statistics(const std::string &lines);
     /** Collective: a failed write on any rank (@p failure, "" if none
      * here) stops every rank with a RunError naming the file. */
     void
@@ -418,21 +389,12 @@ namespace Signorini
     // where the iterate belongs (load step, target time, geometric
     // iteration); the rows not yet appended to the file.
     std::vector<std::string> newton_rows;
-    // statistics.csv and newton_history.csv (rank 0, Write CSV): appended
-    // and flushed once per step.
-    Postprocess::AppendFile statistics_file, history_file;
-    // Anti-cycling and step-cut counts of the current load step, and the
-    // Newton iterations of every step (run summary).
-    unsigned int cycle_detections = 0, points_frozen = 0, points_released = 0,
-                 step_cuts = 0;
-    std::vector<unsigned int> step_iterations;
-    unsigned int line_searches = 0, run_line_searches = 0;
-    unsigned int krylov_iterations = 0, krylov_max = 0; // per load step
-    unsigned int n_failed_checks = 0;
-    unsigned int run_cuts = 0, run_cycles = 0, run_frozen = 0,
-                 run_released = 0;
-    // Points opened early by the release extrapolation (whole run).
-    unsigned int early_releases = 0;
+    // newton_history.csv (rank 0, Write CSV): appended and flushed once
+    // per step.
+    Postprocess::AppendFile history_file;
+    // The step report, statistics.csv and the run summary, with the
+    // counts of the load step under way.
+    Postprocess::RunReport<dim> report;
     unsigned int             history_step = 0, history_geometric = 0;
     double                   history_time = 0;
   };
