@@ -67,7 +67,7 @@ namespace Signorini
     contact->start_geometric_loop();
     for (unsigned int g = 1; g <= c.max_geometric_iterations; ++g)
       {
-        history_geometric = g;
+        report.position.geometric = g;
         pair_for_step(time, step_start_time);
         const TrilinosWrappers::MPI::Vector state_at_pairing = state;
         unsigned int its = 0;
@@ -123,8 +123,8 @@ namespace Signorini
                                    const double step_start_time,
                                    const bool   resume)
   {
-    history_time      = time;
-    history_geometric = 0;
+    report.position.time      = time;
+    report.position.geometric = 0;
     force_scale       = 0;
     make_constraints(time);
     for (auto &f : neumann_functions)
@@ -293,8 +293,9 @@ namespace Signorini
       contact_statistics.n_contact > 0;
     if (!friction_may_hold)
       throw RunError(
-        "load step " + std::to_string(history_step) + ", Newton iterate " +
-        std::to_string(iteration) + ": nothing holds " + list +
+        "load step " + std::to_string(report.position.step) +
+        ", Newton iterate " + std::to_string(iteration) + ": nothing holds " +
+        list +
         " (no Dirichlet condition constrains it and no closed contact point "
         "resists it), so the linear system is singular. Support the body "
         "along that motion (a Dirichlet condition on that component, on one "

@@ -192,26 +192,6 @@ namespace Signorini
 
   template <int dim>
   void
-  Simulation<dim>::append_newton_history()
-  {
-    // Every Newton iterate, including failed attempts before a step cut
-    // (their time is the cut step's target), residuals relative to the
-    // force scale as on screen.
-    std::string failure;
-    if (history_file.is_open())
-      {
-        std::string lines;
-        for (const auto &r : newton_rows)
-          lines += r + "\n";
-        failure = history_file.append(lines);
-      }
-    newton_rows.clear();
-    check_output(failure);
-  }
-
-
-  template <int dim>
-  void
   Simulation<dim>::check_output(const std::string &failure) const
   {
     Postprocess::check_written(failure,
@@ -255,12 +235,8 @@ namespace Signorini
           failure = Postprocess::write_atomically(echo, [&](std::ostream &out) {
             prm.print_parameters(out, ParameterHandler::ShortPRM);
           });
-        if (failure.empty() && parameters.output.write_csv)
-          failure = history_file.open(
-            directory + "/newton_history.csv",
-            "step,time,geometric_iteration,newton_iteration,r_u,r_lambda,"
-            "r_Lambda,n_contact,n_stick,n_slip,n_changed,n_reversed,"
-            "n_cycling,n_frozen,converged\n");
+        if (failure.empty())
+          failure = report.open_newton_history();
       }
     check_output(failure);
   }
@@ -274,7 +250,7 @@ namespace Signorini
   {
     compute_reactions();
     run_postprocessors(step, time);
-    append_newton_history();
+    report.append_newton_history();
     const std::string statistics_lines = report_step(step, time, iterations);
     if (contact->active() && parameters.output.write_csv)
       {

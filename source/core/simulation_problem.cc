@@ -84,70 +84,13 @@ namespace Signorini
                                   const double              force_level,
                                   const bool                converged)
   {
-    const auto &st = contact_statistics;
-    if (contact->active())
-      {
-        report.counts.cycle_detections += st.n_cycling;
-        report.counts.points_frozen += st.n_newly_frozen;
-      }
-    const auto  &block    = evaluation.block;
-    const auto   relative = [&](const double r) {
-      return force_level > 0 ? r / force_level : 0.;
-    };
-    // Printed: above 1e6 the force level is the round-off of a
-    // stress-free state (a body moving freely before contact), and the
-    // digits of the ratio are round-off too.
-    const auto shown = [&](const double r) {
-      std::ostringstream text;
-      if (!std::isfinite(r) || !std::isfinite(force_level))
-        text << (std::isnan(r) || std::isnan(force_level) ? "NaN" : "inf");
-      else if (relative(r) > 1e6)
-        text << ">1.0e+06";
-      else
-        text << std::scientific << std::setprecision(2) << relative(r);
-      return text.str();
-    };
-    const auto verbosity = parameters.output.verbosity;
-    if (contact->active() && verbosity != Verbosity::quiet)
-      {
-        pcout << "    Newton " << std::setw(2) << iteration << ": |R_u| "
-              << shown(block[0]) << " |R_lambda| " << shown(block[1]);
-        if (contact->contact_surfaces().n_friction() > 0)
-          pcout << " |R_Lambda| " << shown(block[2]);
-        pcout << std::defaultfloat << "  contact " << st.n_contact;
-        if (contact->contact_surfaces().n_friction() > 0)
-          pcout << " (stick " << st.n_stick << ", slip " << st.n_slip << ")";
-        pcout << " free " << st.n_points - st.n_contact << " changed "
-              << st.n_changed;
-        if (st.n_reversed > 0)
-          pcout << " (slip reversed " << st.n_reversed << ")";
-        if (st.n_cycling > 0)
-          pcout << " cycling " << st.n_cycling;
-        if (st.n_frozen + st.n_newly_frozen > 0)
-          pcout << " frozen " << st.n_frozen + st.n_newly_frozen;
-        pcout << (converged ? "  converged" : "") << std::endl;
-      }
-    else if (verbosity == Verbosity::verbose)
-      pcout << "    Newton " << std::setw(2) << iteration
-            << ": |R|/|F| = " << std::scientific << std::setprecision(2)
-            << relative(std::sqrt(block[0] * block[0] + block[1] * block[1] +
-                                  block[2] * block[2]))
-            << std::defaultfloat << (converged ? "  converged" : "")
-            << std::endl;
-    std::ostringstream row;
-    row << history_step << "," << format(history_time) << ","
-        << history_geometric << "," << iteration << ","
-        << format(relative(block[0]), 3) << ","
-        << format(relative(block[1]), 3) << ","
-        << format(relative(block[2]), 3);
-    if (contact->active())
-      row << "," << st.n_contact << "," << st.n_stick << "," << st.n_slip
-          << "," << st.n_changed << "," << st.n_reversed << ","
-          << st.n_cycling << "," << st.n_frozen + st.n_newly_frozen;
-    else
-      row << ",0,0,0,0,0,0,0";
-    row << "," << (converged ? 1 : 0);
-    newton_rows.push_back(row.str());
+    report.log_iterate(iteration,
+                       evaluation.block,
+                       force_level,
+                       contact->active() ? &contact_statistics : nullptr,
+                       contact->active() &&
+                         contact->contact_surfaces().n_friction() > 0,
+                       converged);
   }
 
 
@@ -155,7 +98,7 @@ namespace Signorini
   std::string
   Simulation<dim>::non_finite_cause() const
   {
-    return non_finite_loads(history_time);
+    return non_finite_loads(report.position.time);
   }
 
 

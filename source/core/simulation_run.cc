@@ -110,7 +110,7 @@ namespace Signorini
                                  const Solver::LoadStepper &stepper)
   {
     const auto &times = parameters.load_stepping.step_times;
-    history_step      = step;
+    report.position.step = step;
     report.start_step();
     Solver::StepProgress progress;
     progress.t_done      = t_done;
@@ -248,7 +248,7 @@ namespace Signorini
   {
     // The failed iterates go to newton_history.csv now: the retry may be
     // killed, or the run stop.
-    append_newton_history();
+    report.append_newton_history();
     state = last_converged;
     update_solution();
     for (auto &[id, material] : materials)

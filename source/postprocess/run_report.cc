@@ -1,9 +1,12 @@
-// The report of a run: the step report on screen, statistics.csv, the run
-// summary.
+// The report of a run: the Newton log (screen and newton_history.csv), the
+// step report on screen, statistics.csv, the run summary.
 #include <signorini/postprocess/format.h>
 #include <signorini/postprocess/run_report.h>
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace Signorini
 {
@@ -312,6 +315,114 @@ namespace Signorini
       else if (stopped_in > 0)
         sout << "Run summary (stopped in load step " << stopped_in << " of "
              << n_steps << "): no load step written" << std::endl;
+    }
+
+
+    template <int dim>
+    std::string
+    RunReport<dim>::open_newton_history()
+    {
+      if (!parameters.output.write_csv ||
+          Utilities::MPI::this_mpi_process(comm) != 0)
+        return "";
+      return history_file.open(
+        parameters.output.directory + "/newton_history.csv",
+        "step,time,geometric_iteration,newton_iteration,r_u,r_lambda,"
+        "r_Lambda,n_contact,n_stick,n_slip,n_changed,n_reversed,"
+        "n_cycling,n_frozen,converged\n");
+    }
+
+
+    template <int dim>
+    void
+    RunReport<dim>::log_iterate(const unsigned int                iteration,
+                                const std::array<double, 3>      &block,
+                                const double                      force_level,
+                                const Contact::ContactStatistics *contact,
+                                const bool                        friction,
+                                const bool                        converged)
+    {
+      if (contact)
+        {
+          counts.cycle_detections += contact->n_cycling;
+          counts.points_frozen += contact->n_newly_frozen;
+        }
+      const auto relative = [&](const double r) {
+        return force_level > 0 ? r / force_level : 0.;
+      };
+      // Printed: above 1e6 the force level is the round-off of a
+      // stress-free state (a body moving freely before contact), and the
+      // digits of the ratio are round-off too.
+      const auto shown = [&](const double r) {
+        std::ostringstream text;
+        if (!std::isfinite(r) || !std::isfinite(force_level))
+          text << (std::isnan(r) || std::isnan(force_level) ? "NaN" : "inf");
+        else if (relative(r) > 1e6)
+          text << ">1.0e+06";
+        else
+          text << std::scientific << std::setprecision(2) << relative(r);
+        return text.str();
+      };
+      const auto verbosity = parameters.output.verbosity;
+      if (contact && verbosity != Verbosity::quiet)
+        {
+          const auto &st = *contact;
+          pcout << "    Newton " << std::setw(2) << iteration << ": |R_u| "
+                << shown(block[0]) << " |R_lambda| " << shown(block[1]);
+          if (friction)
+            pcout << " |R_Lambda| " << shown(block[2]);
+          pcout << std::defaultfloat << "  contact " << st.n_contact;
+          if (friction)
+            pcout << " (stick " << st.n_stick << ", slip " << st.n_slip << ")";
+          pcout << " free " << st.n_points - st.n_contact << " changed "
+                << st.n_changed;
+          if (st.n_reversed > 0)
+            pcout << " (slip reversed " << st.n_reversed << ")";
+          if (st.n_cycling > 0)
+            pcout << " cycling " << st.n_cycling;
+          if (st.n_frozen + st.n_newly_frozen > 0)
+            pcout << " frozen " << st.n_frozen + st.n_newly_frozen;
+          pcout << (converged ? "  converged" : "") << std::endl;
+        }
+      else if (verbosity == Verbosity::verbose)
+        pcout << "    Newton " << std::setw(2) << iteration
+              << ": |R|/|F| = " << std::scientific << std::setprecision(2)
+              << relative(std::sqrt(block[0] * block[0] + block[1] * block[1] +
+                                    block[2] * block[2]))
+              << std::defaultfloat << (converged ? "  converged" : "")
+              << std::endl;
+      std::ostringstream row;
+      row << position.step << "," << format(position.time) << ","
+          << position.geometric << "," << iteration << ","
+          << format(relative(block[0]), 3) << ","
+          << format(relative(block[1]), 3) << ","
+          << format(relative(block[2]), 3);
+      if (contact)
+        row << "," << contact->n_contact << "," << contact->n_stick << ","
+            << contact->n_slip << "," << contact->n_changed << ","
+            << contact->n_reversed << "," << contact->n_cycling << ","
+            << contact->n_frozen + contact->n_newly_frozen;
+      else
+        row << ",0,0,0,0,0,0,0";
+      row << "," << (converged ? 1 : 0);
+      newton_rows.push_back(row.str());
+    }
+
+
+    template <int dim>
+    void
+    RunReport<dim>::append_newton_history()
+    {
+      std::string failure;
+      if (history_file.is_open())
+        {
+          std::string lines;
+          for (const auto &r : newton_rows)
+            lines += r + "\n";
+          failure = history_file.append(lines);
+        }
+      newton_rows.clear();
+      check_written(failure, parameters.output.directory, comm);
     }
 
 

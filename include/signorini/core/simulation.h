@@ -277,9 +277,6 @@ namespace Signorini
     report_step(const unsigned int step,
                 const double       time,
                 const unsigned int newton_iterations);
-    /** Appends the Newton rows since the last call to newton_history.csv. */
-    void
-    append_newton_history();
     /** Collective: a failed write on any rank (@p failure, "" if none
      * here) stops every rank with a RunError naming the file. */
     void
@@ -395,8 +392,6 @@ namespace Signorini
     // The step report, statistics.csv and the run summary, with the
     // counts of the load step under way.
     Postprocess::RunReport<dim> report;
-    unsigned int             history_step = 0, history_geometric = 0;
-    double                   history_time = 0;
   };
 
   /** Reads @p filename, dispatches on Dimension and runs; used by main().

@@ -120,6 +120,39 @@ namespace Signorini
         return n_failed_checks;
       }
 
+      /** Where the Newton iterates being logged belong: load step, target
+       * time of the solve, geometric iteration. */
+      struct IteratePosition
+      {
+        unsigned int step = 0, geometric = 0;
+        double       time = 0;
+      };
+      IteratePosition position;
+
+      /** Creates newton_history.csv in the output directory with its
+       * header (rank 0; 'Write CSV'). Returns "" or why not. */
+      std::string
+      open_newton_history();
+
+      /** The log of a Newton iterate: its row on screen (with contact:
+       * the block residuals relative to @p force_level and the statuses of
+       * @p contact; without contact (nullptr) in verbose runs only) and its
+       * newton_history.csv row; its status cycles and freezes count into
+       * the step. */
+      void
+      log_iterate(const unsigned int                iteration,
+                  const std::array<double, 3>      &block,
+                  const double                      force_level,
+                  const Contact::ContactStatistics *contact,
+                  const bool                        friction,
+                  const bool                        converged);
+
+      /** Appends the Newton rows since the last call to
+       * newton_history.csv (collective: a failed write stops every rank).
+       * Every iterate goes there, also those of attempts cut later. */
+      void
+      append_newton_history();
+
     private:
       void
       print_step_counts(const StepResults<dim> &results);
@@ -139,6 +172,10 @@ namespace Signorini
 
       std::vector<std::string> statistics_header;
       AppendFile               statistics_file; // rank 0, 'Write CSV'
+      // newton_history.csv (rank 0, 'Write CSV') and its rows not yet
+      // appended (one per iterate).
+      AppendFile               history_file;
+      std::vector<std::string> newton_rows;
       // The checks of the last written step, and failed checks so far.
       std::vector<std::string> last_checks;
       unsigned int             n_failed_checks   = 0;
