@@ -120,7 +120,7 @@ namespace Signorini
     {
       const auto        &face = surfaces.slave_faces()[point.face];
       const unsigned int p    = face.pair;
-      e.law                   = law_parameters(p);
+      e.law                   = coefficients.law(p);
       e.fric                  = e.law.mu > 0;
       e.by_node               = node_status_pair[p];
 

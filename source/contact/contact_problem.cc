@@ -48,6 +48,7 @@ namespace Signorini
         , comm(comm)
         , surfaces(parameters, mapping, fe, dof_handler, materials, comm)
         , obstacles(std::move(obstacles_in))
+        , coefficients(parameters.contact)
         , history(parameters.contact, surfaces, node_status_pair, comm)
     {
       const auto &contact = parameters.contact;
@@ -134,33 +135,13 @@ namespace Signorini
     void
     ContactProblem<dim>::set_coefficients()
     {
-      // Coefficients (formulation.md 8, "magic coefficients"): rho_n = c_n
-      // E / h with h the mean slave face size and E the softer body's
-      // Young's modulus (slave, or a meshed master that is softer: a gap
-      // error is resisted by the softer body, and rho_n from a stiff slave
-      // on a soft master weighs the gap 1/contrast too much);
-      // rho_t = c_t rho_n / (mu p_ref) makes the tangential stiffness mu p_ref
-      // rho_t of a sticking point comparable to rho_n (see
-      // update_coefficients); before any pressure is known p_ref = 1e-3 E.
-      const auto        &pairs   = parameters.contact.pairs;
-      const auto        &scales  = surfaces.pair_scales();
-      const unsigned int n_pairs = pairs.size();
-      rho_n.assign(n_pairs, 0.);
-      rho_t.assign(n_pairs, 0.);
-      p_ref.assign(n_pairs, 0.);
-      for (unsigned int p = 0; p < n_pairs; ++p)
-        {
-          const double E  = scales.slave_modulus[p];
-          const double Em = scales.master_modulus[p];
-          rho_n[p] = pairs[p].rho_n_factor * (Em > 0 ? std::min(E, Em) : E) /
-                     scales.face_size[p];
-          p_ref[p] = 1e-3 * E;
-          rho_t[p] = pairs[p].friction > 0 ? pairs[p].rho_t_factor * rho_n[p] /
-                                               (pairs[p].friction * p_ref[p]) :
-                                             1.;
-          if (obstacles[p])
-            obstacles[p]->set_length_scale(scales.face_size[p]);
-        }
+      const auto &scales = surfaces.pair_scales();
+      coefficients.set(scales.face_size,
+                       scales.slave_modulus,
+                       scales.master_modulus);
+      for (unsigned int p = 0; p < obstacles.size(); ++p)
+        if (obstacles[p])
+          obstacles[p]->set_length_scale(scales.face_size[p]);
     }
 
 
@@ -198,8 +179,10 @@ namespace Signorini
       for (unsigned int p = 0; p < n_pairs; ++p)
         pcout << "  pair " << p + 1 << ": mu = " << pairs[p].friction
               << ", h = " << std::setprecision(4)
-              << surfaces.pair_scales().face_size[p] << ", rho_n = " << rho_n[p]
-              << ", rho_t = " << rho_t[p] << std::setprecision(6) << std::endl;
+              << surfaces.pair_scales().face_size[p]
+              << ", rho_n = " << coefficients.normal(p)
+              << ", rho_t = " << coefficients.tangential(p)
+              << std::setprecision(6) << std::endl;
       for (unsigned int p = 0; p < n_pairs; ++p)
         if (obstacles[p] && !obstacles[p]->approximate_derivatives().empty())
           pcout << "  pair " << p + 1 << ": "
@@ -215,30 +198,6 @@ namespace Signorini
         pcout << "  " << counts.n_hanging
               << " hanging slave node(s): multipliers interpolated"
               << std::endl;
-    }
-
-
-    template <int dim>
-    LawParameters
-    ContactProblem<dim>::law_parameters(const unsigned int p) const
-    {
-      LawParameters law;
-      law.rho_n              = rho_n[p];
-      law.rho_t              = rho_t[p];
-      law.mu                 = parameters.contact.pairs[p].friction;
-      law.zero_threshold     = 1e-12 * surfaces.pair_scales().slave_modulus[p];
-      if (law.mu > 0)
-        {
-          // Friction law of a point with inactive friction, weighted like
-          // an active point at 1e-4 of the pressure level: unit invariant,
-          // and small enough that a node at the contact edge (mortar and
-          // Gauss rules mix free and active points in its Lambda row)
-          // follows its active points. See doc/robustness.md for the sweep
-          // of the factor.
-          constexpr double free_weight = 1e-4;
-          law.free_friction_scale = free_weight * law.mu * p_ref[p] / rho_t[p];
-        }
-      return law;
     }
 
 
@@ -346,7 +305,7 @@ namespace Signorini
       // pressure level: they would make rho_t enormous.
       for (const auto &[dof0, node] : surfaces.nodes())
         if (surfaces.owned_multipliers().is_element(node.lambda) &&
-            state[node.lambda] < -law_parameters(node.pair).zero_threshold)
+            state[node.lambda] < -coefficients.law(node.pair).zero_threshold)
           {
             sum2[node.pair] += state[node.lambda] * state[node.lambda];
             count[node.pair] += 1;
@@ -355,12 +314,8 @@ namespace Signorini
         {
           const double s = Utilities::MPI::sum(sum2[p], comm);
           const double n = Utilities::MPI::sum(count[p], comm);
-          if (pairs[p].friction > 0 && n > 0 && s > 0)
-            {
-              p_ref[p] = std::sqrt(s / n);
-              rho_t[p] = pairs[p].rho_t_factor * rho_n[p] /
-                         (pairs[p].friction * p_ref[p]);
-            }
+          if (n > 0 && s > 0)
+            coefficients.set_pressure_level(p, std::sqrt(s / n));
         }
     }
 
@@ -474,7 +429,8 @@ namespace Signorini
       for (const auto &point : points)
         if (point.paired)
           sum += std::pow(2 * point.weight *
-                            rho_n[surfaces.slave_faces()[point.face].pair] *
+                            coefficients.normal(
+                              surfaces.slave_faces()[point.face].pair) *
                             point.x_ref.norm(),
                           2);
       return std::sqrt(Utilities::MPI::sum(sum, comm));

@@ -52,8 +52,9 @@ namespace Signorini
         }
 
       const double w  = point.weight;
-      const double sc = rho_n[p]; // row scaling of lambda rows
-      const double sf = rho_t[p]; // row scaling of Lambda rows
+      const double sc = coefficients.normal(p); // row scaling of lambda rows
+      const double sf =
+        coefficients.tangential(p); // row scaling of Lambda rows
       F.reinit(e.n);
       for (unsigned int a = 0; a < n_e + n_m; ++a)
         F[a] = -w * e.Nd[a] * r.force[e.comp[a]];
@@ -63,12 +64,11 @@ namespace Signorini
       for (unsigned int l = 0; l < n_l; ++l)
         e.rows[l] =
           e.by_node ?
-            node_status_row(node_active.at(face.lambda_dofs[l]) &&
-                              point.paired,
+            node_status_row(node_active.at(face.lambda_dofs[l]) && point.paired,
                             point.paired ? e.s.gap : 0.,
                             state[face.lambda_dofs[l]],
                             e.s.normal,
-                            rho_n[p]) :
+                            coefficients.normal(p)) :
             NodeStatusRow<dim>{r.r_c, r.drc_dd, 0.};
       for (unsigned int l = 0; l < n_l; ++l)
         {
@@ -114,8 +114,9 @@ namespace Signorini
       const unsigned int o_c = e.o_c, o_f = e.o_f;
       const unsigned int n_t = e.fric ? dim - 1 : 0;
       const double       w   = point.weight;
-      const double       sc  = rho_n[p]; // row scaling of lambda rows
-      const double       sf  = rho_t[p]; // row scaling of Lambda rows
+      const double sc = coefficients.normal(p); // row scaling of lambda rows
+      const double sf =
+        coefficients.tangential(p); // row scaling of Lambda rows
 
       K.reinit(e.n, e.n);
       for (unsigned int a = 0; a < n_u; ++a)
@@ -171,7 +172,8 @@ namespace Signorini
       const auto        &comp  = e.comp;
       const unsigned int n_u   = e.n_e + e.n_m;
       const double       w     = point.weight;
-      const double       sf    = rho_t[p]; // row scaling of Lambda rows
+      const double       sf =
+        coefficients.tangential(p); // row scaling of Lambda rows
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
           const auto        &nf  = *e.node_data[l].status;

@@ -61,20 +61,22 @@ namespace Signorini
           // (formulation.md 3.3). A larger delta would be a tiny nonzero
           // threshold: Lambda = F_t / (mu delta) of order 1e8 at the first
           // iterate.
-          const double delta = 0.5 * law_parameters(p).zero_threshold;
+          const double delta = 0.5 * coefficients.law(p).zero_threshold;
           if (status != InitialStatus::open && !point.paired)
             continue;
           double target;
           if (status == InitialStatus::closed)
-            target =
-              std::min(0., rho_n[p] * std::max(g, -1e300 / rho_n[p])) - delta;
+            target = std::min(0.,
+                              coefficients.normal(p) *
+                                std::max(g, -1e300 / coefficients.normal(p))) -
+                     delta;
           else if (status == InitialStatus::penetrating)
             target =
               g >= -touch_tolerance * surfaces.pair_scales().face_size[p] ?
                 -delta :
                 0.;
           else
-            target = std::max(0., rho_n[p] * g) + delta;
+            target = std::max(0., coefficients.normal(p) * g) + delta;
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
             {
               const double w = point.weight * point.psi[l];
@@ -206,12 +208,13 @@ namespace Signorini
         if (node_status_pair[face.pair])
           for (const auto dof : face.lambda_dofs)
             {
-              const bool active = P_read[dof] > 0 &&
-                                  node_in_contact(state[dof],
-                                                  G_read[dof],
-                                                  D_read[dof],
-                                                  rho_n[face.pair]) &&
-                                  !history.node_released(dof);
+              const bool active =
+                P_read[dof] > 0 &&
+                node_in_contact(state[dof],
+                                G_read[dof],
+                                D_read[dof],
+                                coefficients.normal(face.pair)) &&
+                !history.node_released(dof);
               const auto it = node_active.find(dof);
               if (it != node_active.end() && it->second == active)
                 continue;
@@ -233,7 +236,7 @@ namespace Signorini
             const auto &face = surfaces.slave_faces()[f];
             if (!friction_node_pair[face.pair])
               continue;
-            const auto law = law_parameters(face.pair);
+            const auto law = coefficients.law(face.pair);
             for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
               {
                 const auto dof = face.lambda_dofs[l];

@@ -19,6 +19,7 @@
 
 #include <signorini/bulk/assembler.h>
 #include <signorini/contact/active_set_history.h>
+#include <signorini/contact/coefficients.h>
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/contact_point.h>
 #include <signorini/contact/contact_statistics.h>
@@ -423,8 +424,6 @@ namespace Signorini
       print_setup(ConditionalOStream                   &pcout,
                   const typename Surfaces<dim>::Counts &counts) const;
 
-      LawParameters
-      law_parameters(const unsigned int pair) const;
 
 
       /** A contact point of slave face @p f at @p xi with rule weight
@@ -627,7 +626,7 @@ namespace Signorini
       // master) and its value at the start of the current step.
       std::vector<std::unique_ptr<Obstacles::Motion<dim>>> motions;
       std::vector<Obstacles::RigidMotion<dim>>             motion_at_start;
-      std::vector<double> rho_n, rho_t, p_ref; // per pair
+      Coefficients        coefficients; // rho_n, rho_t, law parameters per pair
       std::vector<bool>   node_status_pair; // per pair
       // Newton on the geometry, per pair: frictionless rigid obstacles.
       std::vector<bool> newton_geometry_pair;
