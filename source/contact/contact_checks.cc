@@ -126,7 +126,6 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector &state) const
     {
       using internal::add_entry;
-      using internal::writable_vector;
       const unsigned int    n_pairs = parameters.contact.pairs.size();
       std::vector<LawCheck> result(n_pairs);
 
@@ -137,9 +136,7 @@ namespace Signorini
       std::vector<TrilinosWrappers::MPI::Vector> nodal;
       if (any_friction_node)
         for (unsigned int c = 0; c < 3 * dim; ++c)
-          nodal.push_back(writable_vector(surfaces.owned_multipliers(),
-                                          surfaces.multiplier_ghosts(),
-                                          comm));
+          nodal.push_back(surfaces.writable_multipliers());
 
       // The largest slip and friction force of each pair (the scale below
       // which a slipping point's direction is round-off).

@@ -44,9 +44,7 @@ namespace Signorini
       std::vector<TrilinosWrappers::MPI::Vector> nodal;
       if (any_node_status)
         for (unsigned int c = 0; c < 2 * dim; ++c)
-          nodal.push_back(writable_vector(surfaces.owned_multipliers(),
-                                          surfaces.multiplier_ghosts(),
-                                          comm));
+          nodal.push_back(surfaces.writable_multipliers());
       for (const auto &point : points)
         {
           const auto &face = surfaces.slave_faces()[point.face];
@@ -344,12 +342,8 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector &field,
       TrilinosWrappers::MPI::Vector       &state_owned) const
     {
-      auto num = writable_vector(surfaces.owned_multipliers(),
-                                 surfaces.multiplier_ghosts(),
-                                 comm);
-      auto den = writable_vector(surfaces.owned_multipliers(),
-                                 surfaces.multiplier_ghosts(),
-                                 comm);
+      auto num = surfaces.writable_multipliers();
+      auto den = surfaces.writable_multipliers();
       for (const auto &face : surfaces.slave_faces())
         for (unsigned int l = 0; l < face.node_local.size(); ++l)
           {

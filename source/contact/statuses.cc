@@ -27,7 +27,6 @@ namespace Signorini
   namespace Contact
   {
     using internal::add_entry;
-    using internal::writable_vector;
 
 
     template <int dim>
@@ -43,12 +42,8 @@ namespace Signorini
       // 1e-8 of the face size) start closed, as where they penetrate; the
       // others keep lambda = 0 (lambda_aug = -rho_n g: open).
       const double touch_tolerance = 1e-8;
-      auto         num = writable_vector(surfaces.owned_multipliers(),
-                                 surfaces.multiplier_ghosts(),
-                                 comm);
-      auto         den = writable_vector(surfaces.owned_multipliers(),
-                                 surfaces.multiplier_ghosts(),
-                                 comm);
+      auto         num             = surfaces.writable_multipliers();
+      auto         den             = surfaces.writable_multipliers();
       for (const auto &point : points)
         {
           const auto        &face = surfaces.slave_faces()[point.face];
@@ -141,23 +136,15 @@ namespace Signorini
       // Weighted gap G_l and weight D_l of every node (faces of all ranks).
       // P_l: the paired share of the node (psi >= 0); a node without
       // paired points has no gap and stays free.
-      auto G = writable_vector(surfaces.owned_multipliers(),
-                               surfaces.multiplier_ghosts(),
-                               comm);
-      auto D = writable_vector(surfaces.owned_multipliers(),
-                               surfaces.multiplier_ghosts(),
-                               comm);
-      auto P = writable_vector(surfaces.owned_multipliers(),
-                               surfaces.multiplier_ghosts(),
-                               comm);
+      auto G = surfaces.writable_multipliers();
+      auto D = surfaces.writable_multipliers();
+      auto P = surfaces.writable_multipliers();
       // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
       // component k in the vector of index k (by the node's lambda DoF).
       std::vector<TrilinosWrappers::MPI::Vector> W;
       if (any_friction_node)
         for (unsigned int k = 0; k < dim - 1; ++k)
-          W.push_back(writable_vector(surfaces.owned_multipliers(),
-                                      surfaces.multiplier_ghosts(),
-                                      comm));
+          W.push_back(surfaces.writable_multipliers());
       for (const auto &point : points)
         {
           const auto &face = surfaces.slave_faces()[point.face];
@@ -182,15 +169,9 @@ namespace Signorini
       G.compress(VectorOperation::add);
       D.compress(VectorOperation::add);
       P.compress(VectorOperation::add);
-      TrilinosWrappers::MPI::Vector G_read(surfaces.owned_multipliers(),
-                                           surfaces.multiplier_ghosts(),
-                                           comm);
-      TrilinosWrappers::MPI::Vector D_read(surfaces.owned_multipliers(),
-                                           surfaces.multiplier_ghosts(),
-                                           comm);
-      TrilinosWrappers::MPI::Vector P_read(surfaces.owned_multipliers(),
-                                           surfaces.multiplier_ghosts(),
-                                           comm);
+      TrilinosWrappers::MPI::Vector G_read = surfaces.ghosted_multipliers();
+      TrilinosWrappers::MPI::Vector D_read = surfaces.ghosted_multipliers();
+      TrilinosWrappers::MPI::Vector P_read = surfaces.ghosted_multipliers();
       G_read = G;
       D_read = D;
       P_read = P;
@@ -198,9 +179,7 @@ namespace Signorini
       for (unsigned int k = 0; k < W.size(); ++k)
         {
           W[k].compress(VectorOperation::add);
-          W_read[k].reinit(surfaces.owned_multipliers(),
-                           surfaces.multiplier_ghosts(),
-                           comm);
+          W_read[k] = surfaces.ghosted_multipliers();
           W_read[k] = W[k];
         }
       unsigned int changed = 0;

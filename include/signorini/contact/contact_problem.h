@@ -52,7 +52,8 @@
  * on this scaling.
  *
  * The members are defined by concern in source/contact/:
- *   contact_problem.cc      construction, coefficients, point data, couplings
+ *   contact_problem.cc      construction, set-up, point data, couplings,
+ *                           snapshots (coefficients: class Coefficients)
  *   surfaces.cc             class Surfaces: faces, multiplier numbering,
  *                           exclusions, constraint lines, positions X + u
  *   pairing.cc              search, projection, mortar segmentation

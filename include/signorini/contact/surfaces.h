@@ -135,6 +135,24 @@ namespace Signorini
         return ghost_multipliers;
       }
 
+      /** A vector over the multipliers alone that takes additions to the
+       * multipliers of this rank's slave faces (compress(add) sums them
+       * on their owners). */
+      TrilinosWrappers::MPI::Vector
+      writable_multipliers() const
+      {
+        TrilinosWrappers::MPI::Vector v;
+        v.reinit(owned, ghost_multipliers, comm, true);
+        return v;
+      }
+      /** A ghosted vector over the multipliers alone (reads the
+       * multipliers of this rank's slave faces). */
+      TrilinosWrappers::MPI::Vector
+      ghosted_multipliers() const
+      {
+        return TrilinosWrappers::MPI::Vector(owned, ghost_multipliers, comm);
+      }
+
       /** This rank's slave faces (locally owned cells). */
       const std::vector<SlaveFace<dim>> &
       slave_faces() const
