@@ -22,8 +22,6 @@
 #include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
-#include "simulation_helpers.h"
-
 #include <algorithm>
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
@@ -44,7 +42,6 @@
 namespace Signorini
 {
   using Postprocess::format;
-  using internal::make_function;
 
 
   template <int dim>
@@ -69,33 +66,21 @@ namespace Signorini
       , fe(FE_Q<dim>(parameters.fe_degree), dim)
       , mapping(parameters.fe_degree)
       , dof_handler(triangulation)
+      , boundary_conditions(parameters.boundary_conditions)
       , linear_solver(
           std::make_unique<Solver::LinearSolver<dim>>(parameters.linear_solver))
       , postprocessors(Postprocess::make_postprocessors<dim>(parameters, prm))
       , report(parameters, pcout, sout, mpi_communicator)
   {
-    const auto &bc = parameters.boundary_conditions;
-    for (unsigned int k = 0; k < bc.dirichlet.size(); ++k)
-      dirichlet_functions.push_back(make_function<dim>(
-        bc.dirichlet[k].values,
-        bc.constants,
-        "subsection 'Boundary conditions/Dirichlet " + std::to_string(k + 1) +
-          "', parameter 'Values'"));
-    for (unsigned int k = 0; k < bc.neumann.size(); ++k)
-      neumann_functions.push_back(make_function<dim>(
-        bc.neumann[k].values,
-        bc.constants,
-        "subsection 'Boundary conditions/Neumann " + std::to_string(k + 1) +
-          "', parameter 'Values'"));
-    body_force = make_function<dim>(
-      std::vector<std::string>(bc.body_force.begin(),
-                               bc.body_force.begin() + dim),
-      bc.constants,
-      "subsection 'Boundary conditions', parameter 'Body force'");
     for (const auto &[id, material] : materials)
       materials_linear &= material->is_linear();
-    bulk = std::make_unique<Bulk::Assembler<dim>>(
-      parameters, mapping, fe, materials, neumann_functions, *body_force);
+    bulk =
+      std::make_unique<Bulk::Assembler<dim>>(parameters,
+                                             mapping,
+                                             fe,
+                                             materials,
+                                             boundary_conditions.neumann(),
+                                             boundary_conditions.body_force());
     contact = std::make_unique<Contact::ContactProblem<dim>>(
       parameters,
       mapping,
@@ -178,28 +163,8 @@ namespace Signorini
                            "mesh (Geometry/Body k/Shift) or use a half "
                            "section (e.g. 'Segment = quarter').");
       }
-    const auto  ids = Geometry::boundary_ids(triangulation);
-    std::string available;
-    for (const auto id : ids)
-      available += (available.empty() ? "" : ", ") + std::to_string(id);
-    const auto check = [&](const unsigned int id, const std::string &where) {
-      if (ids.count(id) == 0)
-        throw InputError(where + ", parameter 'Boundary id': the mesh has no "
-                                 "boundary with id " +
-                         std::to_string(id) + " (it has: " + available +
-                         "). Set 'Boundary id' to one of these.");
-    };
-    const auto &bc = parameters.boundary_conditions;
-    for (unsigned int k = 0; k < bc.dirichlet.size(); ++k)
-      for (const auto id : bc.dirichlet[k].boundary_ids)
-        check(id,
-              "subsection 'Boundary conditions/Dirichlet " +
-                std::to_string(k + 1) + "'");
-    for (unsigned int k = 0; k < bc.neumann.size(); ++k)
-      for (const auto id : bc.neumann[k].boundary_ids)
-        check(id,
-              "subsection 'Boundary conditions/Neumann " +
-                std::to_string(k + 1) + "'");
+    boundary_conditions.check_boundary_ids(
+      Geometry::boundary_ids(triangulation));
 
     std::set<types::material_id> used;
     for (const auto &cell : triangulation.cell_iterators_on_level(0))
@@ -305,7 +270,6 @@ namespace Signorini
   void
   Simulation<dim>::make_constraints(const double time)
   {
-    const auto &bc = parameters.boundary_conditions;
     constraints_values.clear();
     constraints_values.reinit(relevant_system);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints_values);
@@ -318,82 +282,12 @@ namespace Signorini
     constraints_hanging.reinit(locally_relevant);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints_hanging);
     constraints_hanging.close();
-    dirichlet_dofs.assign(bc.dirichlet.size(), {});
-
-    for (unsigned int k = 0; k < bc.dirichlet.size(); ++k)
-      {
-        const auto &d = bc.dirichlet[k];
-        auto &      f = *dirichlet_functions[k];
-        f.set_time(time);
-        const bool   at_point = !d.at_point.empty();
-        Point<dim>   point;
-        if (at_point)
-          point = to_point<dim>(d.at_point, "Dirichlet/At point");
-        const double tolerance =
-          1e-8 * model_size;
-        unsigned int found = 0;
-        // Nodes of this boundary (vertices only for 'At point'); every
-        // support point gets the value of its component's expression.
-        std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (!cell->is_artificial())
-            for (const unsigned int fi : cell->face_indices())
-              if (cell->face(fi)->at_boundary() &&
-                  std::count(d.boundary_ids.begin(),
-                             d.boundary_ids.end(),
-                             cell->face(fi)->boundary_id()))
-                {
-                  const auto face = cell->face(fi);
-                  face->get_dof_indices(face_dofs);
-                  for (unsigned int i = 0; i < face_dofs.size(); ++i)
-                    {
-                      const unsigned int comp =
-                        fe.face_system_to_component_index(i).first;
-                      const auto pos =
-                        std::find(d.components.begin(),
-                                  d.components.end(),
-                                  comp);
-                      if (pos == d.components.end())
-                        continue;
-                      // Support point in real space, through the mapping
-                      // (on a curved boundary's manifold for Q2).
-                      const Point<dim> x = mapping.transform_unit_to_real_cell(
-                        cell,
-                        fe.unit_support_point(
-                          fe.face_to_cell_index(i,
-                                                fi,
-                                                cell->face_orientation(fi),
-                                                cell->face_flip(fi),
-                                                cell->face_rotation(fi))));
-                      if (at_point && x.distance(point) > tolerance)
-                        continue;
-                      const types::global_dof_index dof = face_dofs[i];
-                      const double value =
-                        f.value(x, pos - d.components.begin());
-                      if (!constraints_values.is_constrained(dof))
-                        {
-                          constraints_values.add_line(dof);
-                          constraints_values.set_inhomogeneity(dof, value);
-                          constraints_update.add_line(dof);
-                        }
-                      if (locally_owned.is_element(dof))
-                        dirichlet_dofs[k].emplace_back(dof, comp);
-                      ++found;
-                    }
-                }
-        if (at_point &&
-            Utilities::MPI::sum(found, mpi_communicator) == 0)
-          throw InputError(
-            "subsection 'Boundary conditions/Dirichlet " +
-            std::to_string(k + 1) +
-            "', parameter 'At point': no mesh node of the listed boundary "
-            "id(s) lies at this point. Give the coordinates of a vertex of that "
-            "boundary.");
-        std::sort(dirichlet_dofs[k].begin(), dirichlet_dofs[k].end());
-        dirichlet_dofs[k].erase(std::unique(dirichlet_dofs[k].begin(),
-                                            dirichlet_dofs[k].end()),
-                                dirichlet_dofs[k].end());
-      }
+    boundary_conditions.add_dirichlet_constraints(time,
+                                                  mapping,
+                                                  dof_handler,
+                                                  1e-8 * model_size,
+                                                  constraints_values,
+                                                  constraints_update);
     if (contact->active() && owned_system.size() > dof_handler.n_dofs())
       {
         contact->contact_surfaces().add_constraint_lines(constraints_values);

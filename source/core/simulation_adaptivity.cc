@@ -19,7 +19,6 @@
 #include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
-#include "simulation_helpers.h"
 
 #include <algorithm>
 #include <signorini/geometry/mesh_checks.h>

@@ -22,7 +22,6 @@
 #include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
-#include "simulation_helpers.h"
 
 #include <algorithm>
 #include <signorini/geometry/mesh_checks.h>
@@ -127,9 +126,7 @@ namespace Signorini
     report.position.geometric = 0;
     force_scale       = 0;
     make_constraints(time);
-    for (auto &f : neumann_functions)
-      f->set_time(time);
-    body_force->set_time(time);
+    boundary_conditions.set_load_time(time);
     if (!resume)
       state_step_start = state;
     // Extrapolated predictor: the last converged increment, scaled to this
@@ -339,61 +336,6 @@ namespace Signorini
         default:
           return "Raise 'Newton/Maximum iterations' or use " + smaller + ".";
       }
-  }
-
-
-  template <int dim>
-  std::string
-  Simulation<dim>::non_finite_loads(const double t) const
-  {
-    const auto &bc = parameters.boundary_conditions;
-    std::vector<std::pair<std::string, const FunctionParser<dim> *>> loads;
-    for (unsigned int k = 0; k < dirichlet_functions.size(); ++k)
-      loads.emplace_back("Dirichlet " + std::to_string(k + 1),
-                         dirichlet_functions[k].get());
-    for (unsigned int k = 0; k < neumann_functions.size(); ++k)
-      loads.emplace_back("Neumann " + std::to_string(k + 1),
-                         neumann_functions[k].get());
-    (void)bc;
-    std::string text;
-    for (const auto &[name, function] : loads)
-      {
-        // The first vertex of an owned cell where a component is not
-        // finite, reduced to the smallest rank that has one.
-        FunctionParser<dim> &f = const_cast<FunctionParser<dim> &>(*function);
-        const double         t_before = f.get_time();
-        f.set_time(t);
-        std::vector<double> where(dim + 1, std::numeric_limits<double>::max());
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->is_locally_owned() && where[0] == std::numeric_limits<double>::max())
-            for (const unsigned int v : cell->vertex_indices())
-              {
-                bool finite = true;
-                for (unsigned int c = 0; c < f.n_components; ++c)
-                  finite = finite && std::isfinite(f.value(cell->vertex(v), c));
-                if (!finite)
-                  {
-                    where[0] = Utilities::MPI::this_mpi_process(mpi_communicator);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      where[d + 1] = cell->vertex(v)[d];
-                    break;
-                  }
-              }
-        f.set_time(t_before);
-        const auto all = Utilities::MPI::all_gather(mpi_communicator, where);
-        for (const auto &w : all)
-          if (w[0] != std::numeric_limits<double>::max())
-            {
-              text += "; subsection 'Boundary conditions/" + name +
-                      "', parameter 'Values' is not finite at t = " +
-                      format(t, 4) + ", x = (";
-              for (unsigned int d = 0; d < dim; ++d)
-                text += (d ? ", " : "") + format(w[d + 1], 4);
-              text += ")";
-              break;
-            }
-      }
-    return text;
   }
 
 

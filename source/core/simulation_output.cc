@@ -20,7 +20,6 @@
 #include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
-#include "simulation_helpers.h"
 
 #include <algorithm>
 #include <signorini/geometry/mesh_checks.h>
@@ -44,7 +43,6 @@
 namespace Signorini
 {
   using Postprocess::format;
-  using internal::make_function;
 
 
   // Reaction of the supports on the body: F_int - F_ext summed over the
@@ -57,55 +55,25 @@ namespace Signorini
     // constraints applied (a hanging DoF passes its share to its masters,
     // some of which may carry a Dirichlet condition): at the Dirichlet DoFs
     // it is the force of the supports.
-    {
-      TrilinosWrappers::MPI::Vector r;
-      r.reinit(locally_owned, locally_relevant, mpi_communicator, true);
-      for (const auto i : locally_owned)
-        {
-          const double raw =
-            internal_force[i] - external_force[i] + contact_force[i];
-          const auto *entries = constraints_hanging.get_constraint_entries(i);
-          if (entries && !entries->empty())
-            for (const auto &[j, w] : *entries)
-              r(j) += w * raw; // hanging: to the masters
-          else
-            r(i) += raw;
-        }
-      r.compress(VectorOperation::add);
-      support_force.reinit(locally_owned, mpi_communicator);
-      support_force = r;
-    }
-    reactions.assign(dirichlet_dofs.size(), Tensor<1, dim>());
-    dirichlet_displacement.assign(dirichlet_dofs.size(), Tensor<1, dim>());
-    dirichlet_components.assign(dirichlet_dofs.size(), {});
-    for (unsigned int k = 0; k < dirichlet_dofs.size(); ++k)
+    TrilinosWrappers::MPI::Vector r;
+    r.reinit(locally_owned, locally_relevant, mpi_communicator, true);
+    for (const auto i : locally_owned)
       {
-        Tensor<1, dim> count;
-        for (const auto &[dof, component] : dirichlet_dofs[k])
-          {
-            reactions[k][component] += support_force[dof];
-            dirichlet_displacement[k][component] += solution[dof];
-            count[component] += 1;
-          }
-        count = Utilities::MPI::sum(count, mpi_communicator);
-        dirichlet_displacement[k] =
-          Utilities::MPI::sum(dirichlet_displacement[k], mpi_communicator);
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            dirichlet_components[k][d] = count[d] > 0;
-            if (count[d] > 0)
-              dirichlet_displacement[k][d] /= count[d];
-          }
-        // Round-off (relative to the force level) is printed as zero so the
-        // output does not depend on the number of MPI ranks.
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            reactions[k][d] =
-              Utilities::MPI::sum(reactions[k][d], mpi_communicator);
-            if (std::abs(reactions[k][d]) < 1e-12 * force_scale)
-              reactions[k][d] = 0;
-          }
+        const double raw =
+          internal_force[i] - external_force[i] + contact_force[i];
+        const auto *entries = constraints_hanging.get_constraint_entries(i);
+        if (entries && !entries->empty())
+          for (const auto &[j, w] : *entries)
+            r(j) += w * raw; // hanging: to the masters
+        else
+          r(i) += raw;
       }
+    r.compress(VectorOperation::add);
+    const TrilinosWrappers::MPI::Vector support_force(r);
+    supports = boundary_conditions.supports(support_force,
+                                            solution,
+                                            force_scale,
+                                            mpi_communicator);
   }
 
 
@@ -181,9 +149,9 @@ namespace Signorini
                                time,
                                newton_iterations,
                                u_max,
-                               reactions,
-                               dirichlet_displacement,
-                               dirichlet_components,
+                               supports.reactions,
+                               supports.displacement,
+                               supports.components,
                                summary,
                                postprocessor_columns,
                                step_checks});

@@ -98,7 +98,9 @@ namespace Signorini
   std::string
   Simulation<dim>::non_finite_cause() const
   {
-    return non_finite_loads(report.position.time);
+    return boundary_conditions.non_finite(report.position.time,
+                                          triangulation,
+                                          mpi_communicator);
   }
 
 

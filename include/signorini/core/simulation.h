@@ -15,6 +15,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <signorini/bulk/assembler.h>
+#include <signorini/bulk/boundary_conditions.h>
 #include <signorini/contact/contact_problem.h>
 #include <signorini/core/parameters.h>
 #include <signorini/postprocess/interface.h>
@@ -252,10 +253,6 @@ namespace Signorini
      * Returns the motions held ("" if none). */
     std::string
     hold_free_motions(const unsigned int iteration);
-    /** The load expressions that are not finite at time @p t at a mesh
-     * vertex (for the message of a non-finite residual). */
-    std::string
-    non_finite_loads(const double t) const;
     /** What to change after a failure of kind newton_failure_kind, naming
      * the parameters the user set (Number of steps or Step times). */
     std::string
@@ -308,18 +305,13 @@ namespace Signorini
     // step at fixed contact statuses).
     bool materials_linear = true;
 
-    // Expressions of the loads and Dirichlet data, functions of (x, t).
-    std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;
-    std::vector<std::unique_ptr<FunctionParser<dim>>> neumann_functions;
-    std::unique_ptr<FunctionParser<dim>>              body_force;
-    std::unique_ptr<Bulk::Assembler<dim>>             bulk;
+    // Dirichlet values, loads and supports, functions of (x, t).
+    Bulk::BoundaryConditions<dim>         boundary_conditions;
+    std::unique_ptr<Bulk::Assembler<dim>> bulk;
 
     AffineConstraints<double> constraints_values; // hanging + Dirichlet(t)
     AffineConstraints<double> constraints_update; // hanging + zero Dirichlet
     AffineConstraints<double> constraints_hanging; // hanging nodes only
-    // Locally owned (DoF, component) pairs each Dirichlet condition constrains.
-    std::vector<std::vector<std::pair<types::global_dof_index, unsigned int>>>
-      dirichlet_dofs;
 
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  solution;     // ghosted, current iterate
@@ -344,18 +336,14 @@ namespace Signorini
     // whether any sub-step has converged yet.
     TrilinosWrappers::MPI::Vector last_converged;
     bool                          none_converged = true;
-    TrilinosWrappers::MPI::Vector contact_force;    // on u DoFs [N]
-    // R = F_int - F_ext + F_contact after hanging-node condensation: the
-    // support forces at the Dirichlet DoFs (compute_reactions).
-    TrilinosWrappers::MPI::Vector support_force;
+    TrilinosWrappers::MPI::Vector contact_force; // on u DoFs [N]
     Contact::ContactStatistics    contact_statistics;
     bool                          first_pairing = true;
     // The postprocessors of 'Output/Postprocessors' (some keep history
     // across steps) and their checks of the step, printed after it.
     std::vector<std::unique_ptr<Postprocess::Interface<dim>>> postprocessors;
     std::vector<Postprocess::CheckResult>                     step_checks;
-    Postprocess::StatisticsColumns        postprocessor_columns; // of the step
-    std::vector<std::string>              last_checks; // all checks, last step
+    Postprocess::StatisticsColumns postprocessor_columns;   // of the step
     double                        jacobian_error_max  = 0; // Check Jacobian
 
     // Force level of the load step: the largest internal or external
@@ -375,20 +363,9 @@ namespace Signorini
     NewtonFailure newton_failure_kind = NewtonFailure::iteration_limit;
     double model_size = 0; // bounding-box diagonal of the mesh [m]
     unsigned int maximum_level = 0; // adaptivity: finest level (0: not set)
-    std::vector<Tensor<1, dim>>      reactions; // per Dirichlet condition
-    // Mean displacement of the DoFs each Dirichlet condition constrains,
-    // per component, and which components it constrains (statistics.csv:
-    // force-displacement curves).
-    std::vector<Tensor<1, dim>>          dirichlet_displacement;
-    std::vector<std::array<bool, dim>>   dirichlet_components;
-    std::vector<std::string>                    statistics_header;
-    // Newton history for newton_history.csv: one row per iterate, and
-    // where the iterate belongs (load step, target time, geometric
-    // iteration); the rows not yet appended to the file.
-    std::vector<std::string> newton_rows;
-    // newton_history.csv (rank 0, Write CSV): appended and flushed once
-    // per step.
-    Postprocess::AppendFile history_file;
+    // Reactions and displacements of the supports at the last written
+    // step.
+    Bulk::Supports<dim> supports;
     // The step report, statistics.csv and the run summary, with the
     // counts of the load step under way.
     Postprocess::RunReport<dim> report;

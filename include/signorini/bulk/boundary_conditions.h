@@ -1,0 +1,129 @@
+#ifndef signorini_bulk_boundary_conditions_h
+#define signorini_bulk_boundary_conditions_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <signorini/core/parameters.h>
+
+#include <array>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+/**
+ * The data of subsection 'Boundary conditions' as functions of (x, t):
+ * Dirichlet values (as constraint lines), Neumann tractions and the body
+ * force (evaluated by Bulk::Assembler), and what the supports carry (the
+ * reaction and mean displacement of each Dirichlet condition).
+ */
+namespace Signorini
+{
+  namespace Bulk
+  {
+    using namespace dealii;
+
+    /** Per Dirichlet condition: the force of the supports on the body [N],
+     * the mean displacement of the DoFs it constrains, and which components
+     * it constrains (statistics.csv: force-displacement curves). */
+    template <int dim>
+    struct Supports
+    {
+      std::vector<Tensor<1, dim>>        reactions;
+      std::vector<Tensor<1, dim>>        displacement;
+      std::vector<std::array<bool, dim>> components;
+    };
+
+    template <int dim>
+    class BoundaryConditions
+    {
+    public:
+      /** Parses the expressions of @p parameters (an InputError names the
+       * subsection of an expression that does not parse). */
+      explicit BoundaryConditions(
+        const BoundaryConditionParameters &parameters);
+
+      /** InputError if a condition names a boundary id that is not in
+       * @p ids (the ids of the mesh). */
+      void
+      check_boundary_ids(const std::set<types::boundary_id> &ids) const;
+
+      /** Sets the time of the Neumann tractions and the body force. */
+      void
+      set_load_time(const double time);
+
+      const std::vector<std::unique_ptr<FunctionParser<dim>>> &
+      neumann() const
+      {
+        return neumann_functions;
+      }
+
+      const FunctionParser<dim> &
+      body_force() const
+      {
+        return *body_force_function;
+      }
+
+      /**
+       * Adds the Dirichlet lines at @p time: the values into @p values, the
+       * same lines with zero values into @p update. A DoF constrained
+       * already (a hanging node, an earlier condition) is left as it is.
+       * An 'At point' condition takes the boundary vertices within
+       * @p tolerance of its point. Remembers the locally owned DoFs each
+       * condition constrains (supports()).
+       */
+      void
+      add_dirichlet_constraints(const double               time,
+                                const Mapping<dim>        &mapping,
+                                const DoFHandler<dim>     &dof_handler,
+                                const double               tolerance,
+                                AffineConstraints<double> &values,
+                                AffineConstraints<double> &update);
+
+      /** Collective: the reactions (the sums of @p support_force, owned,
+       * over the DoFs of each condition; below 1e-12 @p force_scale
+       * printed as zero) and the mean of @p solution there. */
+      Supports<dim>
+      supports(const TrilinosWrappers::MPI::Vector &support_force,
+               const TrilinosWrappers::MPI::Vector &solution,
+               const double                         force_scale,
+               const MPI_Comm                       mpi_communicator) const;
+
+      /** Collective: for each Dirichlet or Neumann expression that is not
+       * finite at time @p t at a vertex of a locally owned cell of
+       * @p triangulation, "; subsection ... is not finite at t = ..., x =
+       * (...)"; "" if all are finite. */
+      std::string
+      non_finite(const double              t,
+                 const Triangulation<dim> &triangulation,
+                 const MPI_Comm            mpi_communicator) const;
+
+    private:
+      /** The DoFs of the vertices of boundary faces of Dirichlet condition
+       * @p k at its 'At point' (within @p tolerance). */
+      void
+      add_point_constraint(const unsigned int         k,
+                           const DoFHandler<dim>     &dof_handler,
+                           const double               tolerance,
+                           AffineConstraints<double> &values,
+                           AffineConstraints<double> &update);
+
+      const BoundaryConditionParameters                &parameters;
+      std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;
+      std::vector<std::unique_ptr<FunctionParser<dim>>> neumann_functions;
+      std::unique_ptr<FunctionParser<dim>>              body_force_function;
+      // Per Dirichlet condition: the locally owned (DoF, component) pairs
+      // it constrains, sorted.
+      std::vector<std::vector<std::pair<types::global_dof_index, unsigned int>>>
+        dirichlet_dofs;
+    };
+  } // namespace Bulk
+} // namespace Signorini
+
+#endif
