@@ -58,7 +58,7 @@ namespace Signorini
         group_dofs.clear();
       };
 
-      for (auto &point : points)
+      for (auto &point : pairing.points())
         {
           if (point.q == 0)
             surfaces.slave_faces()[point.face].cell->get_dof_indices(cell_dofs);
@@ -160,7 +160,7 @@ namespace Signorini
       e.geometry_newton = newton_geometry_pair[p] && point.paired;
       if (e.geometry_newton)
         {
-          const auto proj = obstacles[p]->project(e.x_e);
+          const auto proj = pairing.obstacle(p)->project(e.x_e);
           point.normal    = proj.normal;
           point.x_m_rigid = proj.x_m;
           point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);

@@ -142,7 +142,7 @@ namespace Signorini
       // which a slipping point's direction is round-off).
       SlipScales scales{std::vector<double>(n_pairs, 0.),
                         std::vector<double>(n_pairs, 0.)};
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         if (point.paired)
           {
             const unsigned int p = surfaces.slave_faces()[point.face].pair;
@@ -157,7 +157,7 @@ namespace Signorini
           scales.f_max[p] = Utilities::MPI::max(scales.f_max[p], comm);
         }
 
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           if (!point.paired)
             continue;

@@ -47,25 +47,11 @@ namespace Signorini
         , materials(materials)
         , comm(comm)
         , surfaces(parameters, mapping, fe, dof_handler, materials, comm)
-        , obstacles(std::move(obstacles_in))
+        , pairing(parameters, surfaces, std::move(obstacles_in), comm)
         , coefficients(parameters.contact)
         , history(parameters.contact, surfaces, node_status_pair, comm)
     {
       const auto &contact = parameters.contact;
-      mortar              = contact.rule == IntegrationRule::mortar;
-      segment_order       = exact_segment_order<dim>(parameters.fe_degree);
-      // With the mortar rule, a rigid analytic master has no faces to cut
-      // its slave faces by: they use the nodal rule, one law per multiplier
-      // node. Statuses at Gauss points with interpolated multipliers may
-      // admit no consistent active set (B4 ironing cycles without end);
-      // at the nodes they do, and on rigid Hertz the nodal rule is also
-      // the more accurate one (doc/robustness.md).
-      rule = mortar ? std::make_unique<FixedRule<dim>>(IntegrationRule::nodal,
-                                                       1,
-                                                       parameters.fe_degree) :
-                      std::make_unique<FixedRule<dim>>(contact.rule,
-                                                       contact.order,
-                                                       parameters.fe_degree);
       for (unsigned int p = 0; p < contact.pairs.size(); ++p)
         {
           const auto &pair = contact.pairs[p];
@@ -88,23 +74,11 @@ namespace Signorini
           // normals within each Newton solve.
           const bool frictionless_fixed_body =
             pair.friction == 0 && pair.master_is_body();
-          linear_statuses =
-            (p == 0 || linear_statuses) &&
-            (frictionless_fixed_body ||
-             (pair.friction == 0 && obstacles[p] && obstacles[p]->flat()));
-          if (pair.master_is_body())
-            {
-              motions.emplace_back();
-              continue;
-            }
-          motions.push_back(std::make_unique<Obstacles::Motion<dim>>(
-            pair.obstacle_motion,
-            pair.obstacle_rotation,
-            pair.rotation_centre,
-            parameters.boundary_conditions.constants,
-            pair_name(p)));
+          linear_statuses = (p == 0 || linear_statuses) &&
+                            (frictionless_fixed_body ||
+                             (pair.friction == 0 && pairing.obstacle(p) &&
+                              pairing.obstacle(p)->flat()));
         }
-      motion_at_start.resize(contact.pairs.size());
     }
 
 
@@ -117,16 +91,7 @@ namespace Signorini
       const auto counts =
         surfaces.setup(u_constraints, owned_u, node_status_pair);
       set_coefficients();
-      // Contact points: the rule's points on every owned slave face (the
-      // mortar rule cuts the faces of meshed pairs at every pairing).
-      points.clear();
-      for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
-        {
-          const auto &quadrature = rule->face_quadrature(f);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            points.push_back(
-              make_point(f, q, quadrature.point(q), quadrature.weight(q)));
-        }
+      pairing.setup();
       print_setup(pcout, counts);
     }
 
@@ -139,9 +104,6 @@ namespace Signorini
       coefficients.set(scales.face_size,
                        scales.slave_modulus,
                        scales.master_modulus);
-      for (unsigned int p = 0; p < obstacles.size(); ++p)
-        if (obstacles[p])
-          obstacles[p]->set_length_scale(scales.face_size[p]);
     }
 
 
@@ -153,24 +115,8 @@ namespace Signorini
     {
       const auto        &pairs   = parameters.contact.pairs;
       const unsigned int n_pairs = pairs.size();
-      const unsigned int n_points_total =
-        Utilities::MPI::sum(static_cast<unsigned int>(points.size()), comm);
-      pcout << "Contact: " << n_pairs << " pair(s), rule ";
-      if (mortar)
-        {
-          pcout << "mortar (segment-based, " << segment_order
-                << (dim == 2 ? " Gauss points per segment" :
-                               " points per direction on each triangle")
-                << ")";
-          for (const auto &obstacle : obstacles)
-            if (obstacle)
-              {
-                pcout << ", nodal on rigid masters";
-                break;
-              }
-        }
-      else
-        pcout << rule->name() << ", " << n_points_total << " contact points";
+      pcout << "Contact: " << n_pairs << " pair(s), rule "
+            << pairing.rule_description();
       pcout << " on "
             << Utilities::MPI::sum(
                  static_cast<unsigned int>(surfaces.slave_faces().size()), comm)
@@ -184,9 +130,10 @@ namespace Signorini
               << ", rho_t = " << coefficients.tangential(p)
               << std::setprecision(6) << std::endl;
       for (unsigned int p = 0; p < n_pairs; ++p)
-        if (obstacles[p] && !obstacles[p]->approximate_derivatives().empty())
+        if (pairing.obstacle(p) &&
+            !pairing.obstacle(p)->approximate_derivatives().empty())
           pcout << "  pair " << p + 1 << ": "
-                << obstacles[p]->approximate_derivatives()
+                << pairing.obstacle(p)->approximate_derivatives()
                 << ": the contact Jacobian is not exact" << std::endl;
       if (counts.n_excluded_contact + counts.n_excluded_friction > 0)
         pcout << "  over-constraint: " << counts.n_excluded_contact
@@ -198,58 +145,6 @@ namespace Signorini
         pcout << "  " << counts.n_hanging
               << " hanging slave node(s): multipliers interpolated"
               << std::endl;
-    }
-
-
-    template <int dim>
-    typename ContactProblem<dim>::ContactPoint
-    ContactProblem<dim>::make_point(const unsigned int    f,
-                                    const unsigned int    q,
-                                    const Point<dim - 1> &xi,
-                                    const double          w) const
-    {
-      const auto  &face = surfaces.slave_faces()[f];
-      ContactPoint point;
-      point.face = f;
-      point.q    = q;
-      point.xi   = xi;
-      std::vector<double> N;
-      face_shape_values<dim>(face.X.size(), xi, N);
-      point.psi.resize(face.node_local.size());
-      for (unsigned int k = 0; k < face.X.size(); ++k)
-        point.psi[face.k_node[k]] = N[k];
-      point.psi_lambda    = point.psi; // the dual basis is set by pair()
-      const auto geometry = face_geometry<dim>(face.X, xi);
-      point.x_ref         = geometry.x;
-      // Axisymmetric: the contact ring of radius r = x carries 2 pi r. A
-      // point on a node (nodal rule) stands for the node's share of the
-      // face, so its radius is the N_k-weighted mean radius of the face:
-      // the lumped consistent weight, not zero on the axis.
-      double ring = 1;
-      if (parameters.axisymmetric)
-        {
-          ring = 2 * numbers::PI * geometry.x[0];
-          for (unsigned int k = 0; k < face.X.size(); ++k)
-            if (std::abs(N[k] - 1) < 1e-12)
-              {
-                const QGauss<dim - 1> gauss(3);
-                std::vector<double>   N_q;
-                double                num = 0, den = 0;
-                for (unsigned int q = 0; q < gauss.size(); ++q)
-                  {
-                    face_shape_values<dim>(face.X.size(), gauss.point(q), N_q);
-                    const auto g = face_geometry<dim>(face.X, gauss.point(q));
-                    num += gauss.weight(q) * g.jacobian * N_q[k] * g.x[0];
-                    den += gauss.weight(q) * g.jacobian * N_q[k];
-                  }
-                ring = 2 * numbers::PI * num / den;
-              }
-        }
-      point.weight       = w * geometry.jacobian * ring;
-      point.slave_normal = geometry.normal * face.outward_normal > 0 ?
-                             geometry.normal :
-                             -geometry.normal;
-      return point;
     }
 
 
@@ -347,7 +242,7 @@ namespace Signorini
     {
       std::vector<types::global_dof_index> mine, dofs,
         cell_dofs(fe.n_dofs_per_cell());
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           surfaces.slave_faces()[point.face].cell->get_dof_indices(cell_dofs);
           point_dofs(point, cell_dofs, dofs);
@@ -374,7 +269,7 @@ namespace Signorini
       // Points of one slave face paired with one master face couple the
       // same unknowns: one entry block per (slave face, master face).
       std::set<int> masters_of_face;
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           const auto &face = surfaces.slave_faces()[point.face];
           if (static_cast<int>(point.face) != last_face)
@@ -405,8 +300,8 @@ namespace Signorini
     std::shared_ptr<const typename ContactProblem<dim>::PointsState>
     ContactProblem<dim>::save_points() const
     {
-      return std::make_shared<const PointsState>(
-        PointsState{points, node_active, node_friction, history.save()});
+      return std::make_shared<const PointsState>(PointsState{
+        pairing.points(), node_active, node_friction, history.save()});
     }
 
 
@@ -414,7 +309,7 @@ namespace Signorini
     void
     ContactProblem<dim>::restore_points(const PointsState &saved)
     {
-      points        = saved.points;
+      pairing.points() = saved.points;
       node_active   = saved.node_active;
       node_friction = saved.node_friction;
       history.restore(saved.history);
@@ -426,7 +321,7 @@ namespace Signorini
     ContactProblem<dim>::roundoff_scale() const
     {
       double sum = 0;
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         if (point.paired)
           sum += std::pow(2 * point.weight *
                             coefficients.normal(

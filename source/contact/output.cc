@@ -45,7 +45,7 @@ namespace Signorini
       if (any_node_status)
         for (unsigned int c = 0; c < 2 * dim; ++c)
           nodal.push_back(surfaces.writable_multipliers());
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           const auto &face = surfaces.slave_faces()[point.face];
           auto       &r    = result[face.pair];
@@ -113,10 +113,11 @@ namespace Signorini
                   }
         }
       for (unsigned int p = 0; p < result.size(); ++p)
-        if (obstacles[p])
+        if (pairing.obstacle(p))
           {
             result[p].rigid                 = true;
-            result[p].obstacle_displacement = obstacles[p]->get_motion().translation;
+            result[p].obstacle_displacement =
+              pairing.obstacle(p)->get_motion().translation;
           }
       for (unsigned int p = 0; p < result.size(); ++p)
         {
@@ -147,7 +148,7 @@ namespace Signorini
     ContactProblem<dim>::gather_points() const
     {
       std::vector<PointRecord> mine;
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           PointRecord r;
           r.pair          = surfaces.slave_faces()[point.face].pair;
@@ -245,7 +246,7 @@ namespace Signorini
 
       std::vector<types::global_dof_index> scalar_cell_dofs(
         scalar_dofs.get_fe().n_dofs_per_cell());
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           const auto &face = surfaces.slave_faces()[point.face];
           if (point.q == 0)
@@ -375,7 +376,7 @@ namespace Signorini
       std::vector<unsigned int> master_active(surfaces.master_faces().size(),
                                               0);
       std::vector<bool> slave_active(surfaces.slave_faces().size(), false);
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         if (point.status != PointStatus::free)
           {
             slave_active[point.face] = true;

@@ -9,8 +9,8 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/rtree.h>
 
-#include <signorini/contact/contact_problem.h>
 #include <signorini/contact/distributed_vectors.h>
+#include <signorini/contact/pairing.h>
 #include <signorini/contact/segmentation.h>
 #include <signorini/postprocess/output_files.h>
 
@@ -22,6 +22,7 @@
 #include <iomanip>
 #include <limits>
 #include <set>
+#include <sstream>
 
 namespace Signorini
 {
@@ -31,10 +32,100 @@ namespace Signorini
 
 
     template <int dim>
+    Pairing<dim>::Pairing(
+      const Parameters                                         &parameters,
+      const Surfaces<dim>                                      &surfaces,
+      std::vector<std::unique_ptr<Obstacles::Interface<dim>>> &&obstacles_in,
+      const MPI_Comm                                            comm)
+        : parameters(parameters)
+        , surfaces(surfaces)
+        , comm(comm)
+        , obstacles(std::move(obstacles_in))
+        , motion_at_start(parameters.contact.pairs.size())
+    {
+      const auto &contact = parameters.contact;
+      mortar              = contact.rule == IntegrationRule::mortar;
+      segment_order       = exact_segment_order<dim>(parameters.fe_degree);
+      // With the mortar rule, a rigid analytic master has no faces to cut
+      // its slave faces by: they use the nodal rule, one law per multiplier
+      // node. Statuses at Gauss points with interpolated multipliers may
+      // admit no consistent active set (B4 ironing cycles without end);
+      // at the nodes they do, and on rigid Hertz the nodal rule is also
+      // the more accurate one (doc/robustness.md).
+      rule = mortar ? std::make_unique<FixedRule<dim>>(IntegrationRule::nodal,
+                                                       1,
+                                                       parameters.fe_degree) :
+                      std::make_unique<FixedRule<dim>>(contact.rule,
+                                                       contact.order,
+                                                       parameters.fe_degree);
+      for (unsigned int p = 0; p < contact.pairs.size(); ++p)
+        {
+          const auto &pair = contact.pairs[p];
+          if (pair.master_is_body())
+            motions.emplace_back();
+          else
+            motions.push_back(std::make_unique<Obstacles::Motion<dim>>(
+              pair.obstacle_motion,
+              pair.obstacle_rotation,
+              pair.rotation_centre,
+              parameters.boundary_conditions.constants,
+              internal::pair_name(p)));
+        }
+    }
+
+
+    template <int dim>
     void
-    ContactProblem<dim>::pair(const TrilinosWrappers::MPI::Vector &state,
-                              const double                         time,
-                              const double                         t0)
+    Pairing<dim>::setup()
+    {
+      for (unsigned int p = 0; p < obstacles.size(); ++p)
+        if (obstacles[p])
+          obstacles[p]->set_length_scale(surfaces.pair_scales().face_size[p]);
+      // The rule's points on every owned slave face (the mortar rule cuts
+      // the faces of meshed pairs at every pairing).
+      point_store.clear();
+      for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
+        {
+          const auto &quadrature = rule->face_quadrature(f);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            point_store.push_back(
+              make_point(f, q, quadrature.point(q), quadrature.weight(q)));
+        }
+    }
+
+
+    template <int dim>
+    std::string
+    Pairing<dim>::rule_description() const
+    {
+      std::ostringstream text;
+      if (mortar)
+        {
+          text << "mortar (segment-based, " << segment_order
+               << (dim == 2 ? " Gauss points per segment" :
+                              " points per direction on each triangle")
+               << ")";
+          for (const auto &obstacle : obstacles)
+            if (obstacle)
+              {
+                text << ", nodal on rigid masters";
+                break;
+              }
+        }
+      else
+        text << rule->name() << ", "
+             << Utilities::MPI::sum(
+                  static_cast<unsigned int>(point_store.size()), comm)
+             << " contact points";
+      return text.str();
+    }
+
+
+    template <int dim>
+    void
+    Pairing<dim>::pair(const TrilinosWrappers::MPI::Vector &state,
+                       const double                         time,
+                       const double                         t0)
     {
       const auto &pairs = parameters.contact.pairs;
 
@@ -69,7 +160,7 @@ namespace Signorini
       unsigned int n_pinned = 0;
       n_deep                = 0;
       ++pairings_in_step;
-      for (auto &point : points)
+      for (auto &point : point_store)
         n_pinned +=
           pair_point(point, state, x_master, inside, tree);
       n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
@@ -80,17 +171,17 @@ namespace Signorini
 
     template <int dim>
     bool
-    ContactProblem<dim>::pair_point(
-      ContactPoint                                           &point,
-      const TrilinosWrappers::MPI::Vector                    &state,
-      const std::vector<std::vector<Point<dim>>>             &x_master,
-      const std::vector<Point<dim>>                          &inside,
-      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    Pairing<dim>::pair_point(ContactPoint<dim>                   &point,
+                             const TrilinosWrappers::MPI::Vector &state,
+                             const Nodes                         &x_master,
+                             const std::vector<Point<dim>>       &inside,
+                             const Tree                          &tree)
     {
       const auto        &contact      = parameters.contact;
       const auto        &face         = surfaces.slave_faces()[point.face];
       const unsigned int p            = face.pair;
-      const Point<dim>   x_e          = slave_position(point, state);
+      const Point<dim>   x_e =
+        surfaces.slave_position(point.face, point.psi, point.x_ref, state);
 
       point.paired      = false;
       point.master_face = -1;
@@ -157,12 +248,11 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::search_master(
-      ContactPoint                                           &point,
-      const Point<dim>                                       &x_e,
-      const std::vector<std::vector<Point<dim>>>             &x_master,
-      const std::vector<Point<dim>>                          &inside,
-      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    Pairing<dim>::search_master(ContactPoint<dim>             &point,
+                                const Point<dim>              &x_e,
+                                const Nodes                   &x_master,
+                                const std::vector<Point<dim>> &inside,
+                                const Tree                    &tree)
     {
       const unsigned int p = surfaces.slave_faces()[point.face].pair;
       BoundingBox<dim>   query(std::make_pair(x_e, x_e));
@@ -214,15 +304,15 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::set_multiplier_basis()
+    Pairing<dim>::set_multiplier_basis()
     {
       // Dual multipliers only on slave faces whose points are all paired:
       // on a face that leaves the master partly, psi~ (negative lobes)
       // would weigh the gap of the paired part alone.
       std::vector<bool> covered(surfaces.slave_faces().size(), true);
-      for (const auto &point : points)
+      for (const auto &point : point_store)
         covered[point.face] = covered[point.face] && point.paired;
-      for (auto &point : points)
+      for (auto &point : point_store)
         {
           const auto &face = surfaces.slave_faces()[point.face];
           point.psi_lambda = point.psi;
@@ -241,12 +331,11 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::pair_deep(
-      ContactPoint                                           &point,
-      const Point<dim>                                       &x_e,
-      const std::vector<std::vector<Point<dim>>>             &x_master,
-      const std::vector<Point<dim>>                          &inside,
-      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    Pairing<dim>::pair_deep(ContactPoint<dim>             &point,
+                            const Point<dim>              &x_e,
+                            const Nodes                   &x_master,
+                            const std::vector<Point<dim>> &inside,
+                            const Tree                    &tree)
     {
       // A slave point deeper in the master body than the search box reaches
       // (a deep initial interpenetration, or a large load step) is paired
@@ -290,15 +379,13 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::segment(
-      const TrilinosWrappers::MPI::Vector                    &state,
-      const std::vector<std::vector<Point<dim>>>             &x_master,
-      const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree)
+    Pairing<dim>::segment(const TrilinosWrappers::MPI::Vector &state,
+                          const Nodes                         &x_master,
+                          const Tree                          &tree)
     {
-      std::vector<ContactPoint> old_points;
-      old_points.swap(points);
-      unsigned int next_old = 0;
-      n_pieces              = 0;
+      Points old_points;
+      old_points.swap(point_store);
+      unsigned int                                 next_old = 0;
       std::vector<Point<dim>>                      x_slave;
       std::vector<const std::vector<Point<dim>> *> candidates;
       std::vector<unsigned int>                    candidate_face;
@@ -306,14 +393,14 @@ namespace Signorini
         {
           const auto        &face      = surfaces.slave_faces()[f];
           const unsigned int p         = face.pair;
-          const std::size_t  first_new = points.size();
+          const std::size_t  first_new = point_store.size();
           if (obstacles[p])
             {
               // Analytic master: nothing to cut, nodal rule (see the
               // constructor).
               const auto &quadrature = rule->face_quadrature(f);
               for (unsigned int q = 0; q < quadrature.size(); ++q)
-                points.push_back(
+                point_store.push_back(
                   make_point(f, q, quadrature.point(q), quadrature.weight(q)));
             }
           else
@@ -335,12 +422,11 @@ namespace Signorini
                   }
               const auto cut =
                 segment_slave_face<dim>(x_slave, candidates, segment_order);
-              n_pieces += cut.n_pieces;
               for (unsigned int q = 0; q < cut.points.size(); ++q)
                 {
-                  points.push_back(
+                  point_store.push_back(
                     make_point(f, q, cut.points[q], cut.weights[q]));
-                  points.back().segment_master =
+                  point_store.back().segment_master =
                     cut.master[q] >= 0 ? candidate_face[cut.master[q]] : -1;
                 }
             }
@@ -348,24 +434,26 @@ namespace Signorini
           // so that an unchanged contact state counts no change.
           while (next_old < old_points.size() && old_points[next_old].face < f)
             ++next_old;
-          for (std::size_t i = first_new; i < points.size(); ++i)
+          for (std::size_t i = first_new; i < point_store.size(); ++i)
             {
               double best = std::numeric_limits<double>::max();
               for (std::size_t j = next_old;
                    j < old_points.size() && old_points[j].face == f;
                    ++j)
                 if (const double d2 =
-                      (old_points[j].xi - points[i].xi).norm_square();
+                      (old_points[j].xi - point_store[i].xi).norm_square();
                     d2 < best)
                   {
                     best                      = d2;
-                    points[i].status          = old_points[j].status;
-                    points[i].friction_active = old_points[j].friction_active;
-                    points[i].slip_direction  = old_points[j].slip_direction;
+                    point_store[i].status     = old_points[j].status;
+                    point_store[i].friction_active =
+                      old_points[j].friction_active;
+                    point_store[i].slip_direction =
+                      old_points[j].slip_direction;
                     // The geometric loop's history and freeze (the
                     // segmentation changes with every pairing).
                     const auto &o = old_points[j].geometric;
-                    auto       &g = points[i].geometric;
+                    auto       &g = point_store[i].geometric;
                     g.status_1    = o.status_1;
                     g.status_2    = o.status_2;
                     g.direction_1 = o.direction_1;
@@ -373,7 +461,7 @@ namespace Signorini
                     g.frozen      = o.frozen;
                     // The freeze only where the loop froze the point.
                     const auto &n    = old_points[j].newton;
-                    auto       &h    = points[i].newton;
+                    auto       &h    = point_store[i].newton;
                     h.was_frozen     = o.frozen;
                     h.freeze_contact = o.frozen && n.freeze_contact;
                     h.freeze_stick   = o.frozen && n.freeze_stick;
@@ -385,7 +473,70 @@ namespace Signorini
     }
 
 
-    template class ContactProblem<2>;
-    template class ContactProblem<3>;
+    template <int dim>
+    ContactPoint<dim>
+    Pairing<dim>::make_point(const unsigned int    f,
+                             const unsigned int    q,
+                             const Point<dim - 1> &xi,
+                             const double          w) const
+    {
+      const auto       &face = surfaces.slave_faces()[f];
+      ContactPoint<dim> point;
+      point.face = f;
+      point.q    = q;
+      point.xi   = xi;
+      std::vector<double> N;
+      face_shape_values<dim>(face.X.size(), xi, N);
+      point.psi.resize(face.node_local.size());
+      for (unsigned int k = 0; k < face.X.size(); ++k)
+        point.psi[face.k_node[k]] = N[k];
+      point.psi_lambda    = point.psi; // the dual basis is set by pair()
+      const auto geometry = face_geometry<dim>(face.X, xi);
+      point.x_ref         = geometry.x;
+      // Axisymmetric: the contact ring of radius r = x carries 2 pi r. A
+      // point on a node (nodal rule) stands for the node's share of the
+      // face, so its radius is the N_k-weighted mean radius of the face:
+      // the lumped consistent weight, not zero on the axis.
+      double ring = 1;
+      if (parameters.axisymmetric)
+        {
+          ring = 2 * numbers::PI * geometry.x[0];
+          for (unsigned int k = 0; k < face.X.size(); ++k)
+            if (std::abs(N[k] - 1) < 1e-12)
+              {
+                const QGauss<dim - 1> gauss(3);
+                std::vector<double>   N_q;
+                double                num = 0, den = 0;
+                for (unsigned int q = 0; q < gauss.size(); ++q)
+                  {
+                    face_shape_values<dim>(face.X.size(), gauss.point(q), N_q);
+                    const auto g = face_geometry<dim>(face.X, gauss.point(q));
+                    num += gauss.weight(q) * g.jacobian * N_q[k] * g.x[0];
+                    den += gauss.weight(q) * g.jacobian * N_q[k];
+                  }
+                ring = 2 * numbers::PI * num / den;
+              }
+        }
+      point.weight       = w * geometry.jacobian * ring;
+      point.slave_normal = geometry.normal * face.outward_normal > 0 ?
+                             geometry.normal :
+                             -geometry.normal;
+      return point;
+    }
+
+
+    template <int dim>
+    void
+    Pairing<dim>::take_projection(ContactPoint<dim>         &point,
+                                  const FaceProjection<dim> &proj) const
+    {
+      point.xi_m   = proj.xi;
+      point.normal = proj.normal;
+      face_shape_values<dim>(surfaces.n_face_nodes(), proj.xi, point.N_m);
+    }
+
+
+    template class Pairing<2>;
+    template class Pairing<3>;
   } // namespace Contact
 } // namespace Signorini

@@ -44,7 +44,7 @@ namespace Signorini
       const double touch_tolerance = 1e-8;
       auto         num             = surfaces.writable_multipliers();
       auto         den             = surfaces.writable_multipliers();
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           const auto        &face = surfaces.slave_faces()[point.face];
           const unsigned int p    = face.pair;
@@ -145,7 +145,7 @@ namespace Signorini
       if (any_friction_node)
         for (unsigned int k = 0; k < dim - 1; ++k)
           W.push_back(surfaces.writable_multipliers());
-      for (const auto &point : points)
+      for (const auto &point : pairing.points())
         {
           const auto &face = surfaces.slave_faces()[point.face];
           if (!node_status_pair[face.pair])

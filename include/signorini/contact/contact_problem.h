@@ -23,8 +23,8 @@
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/contact_point.h>
 #include <signorini/contact/contact_statistics.h>
-#include <signorini/contact/integration_rule.h>
 #include <signorini/contact/obstacles/interface.h>
+#include <signorini/contact/pairing.h>
 #include <signorini/contact/projection.h>
 #include <signorini/contact/surface_data.h>
 #include <signorini/contact/surfaces.h>
@@ -56,7 +56,8 @@
  *                           snapshots (coefficients: class Coefficients)
  *   surfaces.cc             class Surfaces: faces, multiplier numbering,
  *                           exclusions, constraint lines, positions X + u
- *   pairing.cc              search, projection, mortar segmentation
+ *   pairing.cc              class Pairing: the contact points, search,
+ *                           projection, mortar segmentation
  *   statuses.cc             statuses per node, initial multipliers
  *   active_set_history.cc   class ActiveSetHistory: anti-cycling, freezes,
  *                           releases, extrapolation
@@ -154,7 +155,10 @@ namespace Signorini
       void
       pair(const TrilinosWrappers::MPI::Vector &state,
            const double                         time,
-           const double                         step_start_time);
+           const double                         step_start_time)
+      {
+        pairing.pair(state, time, step_start_time);
+      }
 
       /**
        * Friction augmentation rho_t = c_t rho_n / (mu p_ref) per pair, with
@@ -206,12 +210,12 @@ namespace Signorini
       void
       start_newton_solve()
       {
-        history.start_newton_solve(points, node_friction);
+        history.start_newton_solve(pairing.points(), node_friction);
       }
       unsigned int
       release_frozen(unsigned int &refrozen)
       {
-        return history.release_frozen(points, refrozen);
+        return history.release_frozen(pairing.points(), refrozen);
       }
 
       /** Release extrapolation after the residual of an iterate that
@@ -220,12 +224,12 @@ namespace Signorini
       unsigned int
       extrapolate_releases()
       {
-        return history.extrapolate_releases(points, node_active);
+        return history.extrapolate_releases(pairing.points(), node_active);
       }
       void
       clear_releases()
       {
-        history.clear_releases(points);
+        history.clear_releases(pairing.points());
       }
 
       /** Anti-cycling across pairings, and the pairing 2-cycles of
@@ -235,37 +239,27 @@ namespace Signorini
       void
       start_geometric_loop()
       {
-        history.start_geometric_loop(points);
-        pairings_in_step = 0;
-        n_newly_pinned   = 0;
+        history.start_geometric_loop(pairing.points());
+        pairing.start_step();
       }
       unsigned int
       end_geometric_iteration(const unsigned int g)
       {
-        return history.end_geometric_iteration(points, g);
+        return history.end_geometric_iteration(pairing.points(), g);
       }
 
-      /** Points the last pairing found deep inside the master body and
-       * paired from the penetrated side (all ranks). */
+      /** Pairing::deep_points(). */
       unsigned int
       deep_points() const
       {
-        return n_deep;
+        return pairing.deep_points();
       }
 
-      /**
-       * Pairing 2-cycles (meshed masters, non-mortar rules): a point whose
-       * new master face is the one of two pairings before and not the one
-       * of the last pairing sits at a kink of the master surface, where
-       * each pairing's normal moves it onto the other face. It is pinned to
-       * that face for the rest of the step (projected onto it, also just
-       * outside it, while the projection tolerance allows). The number of
-       * points pinned by the last pair() call, over all ranks.
-       */
+      /** Pairing::newly_pinned(). */
       unsigned int
       newly_pinned() const
       {
-        return n_newly_pinned;
+        return pairing.newly_pinned();
       }
 
       /** Opaque copy of the per-point state (statuses, values, anti-cycling
@@ -427,14 +421,6 @@ namespace Signorini
 
 
 
-      /** A contact point of slave face @p f at @p xi with rule weight
-       * @p w on the unit face (shape values, position, weight, normal). */
-      ContactPoint
-      make_point(const unsigned int    f,
-                 const unsigned int    q,
-                 const Point<dim - 1> &xi,
-                 const double          w) const;
-
       /** The force on the master at @p point from the multipliers
        * (law_checks()). */
       Tensor<1, dim>
@@ -457,48 +443,6 @@ namespace Signorini
       add_node_slip_samples(std::vector<TrilinosWrappers::MPI::Vector> &nodal,
                             const SlipScales                           &scales,
                             std::vector<LawCheck> &result) const;
-      /** Pairs one contact point at @p state with the master faces at
-       * @p x_master (rigid obstacle, pinned face, the mortar piece's face,
-       * else the search), records its pairing history and sets its normal
-       * and tangents; true if a pairing 2-cycle pinned it now. */
-      bool
-      pair_point(ContactPoint                                           &point,
-                 const TrilinosWrappers::MPI::Vector                    &state,
-                 const std::vector<std::vector<Point<dim>>>             &x_master,
-                 const std::vector<Point<dim>>                          &inside,
-                 const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
-      /** The search: the closest master face onto which @p point at @p x_e
-       * projects inside, else the smallest violation within the projection
-       * tolerance, else pair_deep(). */
-      void
-      search_master(ContactPoint                                           &point,
-                    const Point<dim>                                       &x_e,
-                    const std::vector<std::vector<Point<dim>>>             &x_master,
-                    const std::vector<Point<dim>>                          &inside,
-                    const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
-      /** psi_lambda of every point: the dual basis on the faces of
-       * node-status pairs whose points are all paired, else psi. */
-      void
-      set_multiplier_basis();
-      /** Pairs an unpaired @p point deep inside the master body with the
-       * nearest master face it lies behind (see the definition). */
-      void
-      pair_deep(ContactPoint &                                          point,
-                const Point<dim> &                                      x_e,
-                const std::vector<std::vector<Point<dim>>> &           x_master,
-                const std::vector<Point<dim>> &                         inside,
-                const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
-      /**
-       * Mortar rule: cuts every slave face of a meshed pair by the master
-       * faces at their current positions @p x_master (formulation.md 6)
-       * and rebuilds the contact points; a new point takes the last status
-       * of the nearest old point of its face.
-       */
-      void
-      segment(const TrilinosWrappers::MPI::Vector &                  state,
-              const std::vector<std::vector<Point<dim>>> &          x_master,
-              const RTree<std::pair<BoundingBox<dim>, unsigned int>> &tree);
-
       /** System indices of the local unknowns of @p point in the order
        * e | m | lambda | Lambda (slave face displacements, master face
        * displacements, multipliers) used by assembly and sparsity;
@@ -545,17 +489,6 @@ namespace Signorini
                  const TrilinosWrappers::MPI::Vector &state,
                  const TrilinosWrappers::MPI::Vector &start) const;
 
-
-
-      /** Takes the projection @p proj onto a master face as the point's:
-       * xi_m, N_m(xi_m) and the normal. */
-      void
-      take_projection(ContactPoint &point, const FaceProjection<dim> &proj) const
-      {
-        point.xi_m   = proj.xi;
-        point.normal = proj.normal;
-        face_shape_values<dim>(surfaces.n_face_nodes(), proj.xi, point.N_m);
-      }
 
 
       // The assembly of one contact point (source/contact/assembly.cc,
@@ -616,17 +549,9 @@ namespace Signorini
       const Bulk::Materials<dim> &materials;
       MPI_Comm comm;
       Surfaces<dim>               surfaces;
+      // The contact points and their masters (pairing.h).
+      Pairing<dim> pairing;
 
-      // The fixed rule; with the mortar rule, Gauss of the segment order
-      // for the faces of rigid pairs (analytic master: nothing to cut).
-      std::unique_ptr<SlaveRule<dim>>                  rule;
-      bool                                             mortar = false;
-      unsigned int                                     segment_order = 0;
-      std::vector<std::unique_ptr<Obstacles::Interface<dim>>> obstacles; // per pair
-      // Prescribed motion of each rigid obstacle (nullptr for a meshed
-      // master) and its value at the start of the current step.
-      std::vector<std::unique_ptr<Obstacles::Motion<dim>>> motions;
-      std::vector<Obstacles::RigidMotion<dim>>             motion_at_start;
       Coefficients        coefficients; // rho_n, rho_t, law parameters per pair
       std::vector<bool>   node_status_pair; // per pair
       // Newton on the geometry, per pair: frictionless rigid obstacles.
@@ -645,13 +570,6 @@ namespace Signorini
       std::vector<bool> friction_node_pair; // per pair
       bool              any_friction_node = false;
       ActiveSetHistory<dim> history;
-      unsigned int        n_newly_pinned = 0, pairings_in_step = 0;
-      unsigned int        n_deep = 0; // points paired by pair_deep(), last pairing
-
-      unsigned int n_pieces = 0; // mortar pieces (owned faces)
-
-      std::vector<ContactPoint> points;
-
     };
   } // namespace Contact
 } // namespace Signorini
