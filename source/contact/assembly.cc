@@ -29,13 +29,13 @@ namespace Signorini
       ContactStatistics stats;
       // Normal status per node (decided before the point loop: a node's
       // status needs the points of all its faces).
-      if (any_node_status)
+      if (node_statuses.any())
         {
           stats.n_changed +=
-            decide_node_statuses(state, start, new_iterate, stats);
+            node_statuses.decide(state, start, new_iterate, history, stats);
           // The statuses of the next solve (release extrapolation).
           if (matrix)
-            history.set_solved_node_statuses(node_active);
+            history.set_solved_node_statuses(node_statuses.normal_statuses());
         }
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
@@ -122,7 +122,7 @@ namespace Signorini
       const unsigned int p    = face.pair;
       e.law                   = coefficients.law(p);
       e.fric                  = e.law.mu > 0;
-      e.by_node               = node_status_pair[p];
+      e.by_node               = node_statuses.by_node(p);
 
       // Point state (formulation.md 2).
       e.n_e = face.u_local.size();
@@ -211,7 +211,7 @@ namespace Signorini
           if (friction_out)
             e.point_law.mu = 0;
         }
-      e.r = e.by_node ? node_status_response(point, s) :
+      e.r = e.by_node ? node_statuses.response(point, s) :
                         evaluate_contact_law(s, e.point_law);
 
       // Friction status per node: the friction force of the multipliers,
@@ -225,7 +225,7 @@ namespace Signorini
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
           auto &d  = e.node_data[l];
-          d.status = &node_friction.at(face.lambda_dofs[l]);
+          d.status = &node_statuses.friction(face.lambda_dofs[l]);
           d.lambda = state[face.lambda_dofs[l]];
           for (unsigned int k = 0; k < dim - 1; ++k)
             d.Lambda[k] = state[face.friction_dofs[l * (dim - 1) + k]];

@@ -99,7 +99,7 @@ namespace Signorini
       Tensor<1, dim> force = -lambda * point.normal;
       if (mu == 0)
         return force;
-      if (friction_node_pair[p])
+      if (node_statuses.friction_by_node(p))
         // Per node: mu lambda_l T Lambda_l, interpolated with psi~.
         for (unsigned int l = 0; l < n_l; ++l)
           for (unsigned int k = 0; k < dim - 1; ++k)
@@ -134,7 +134,7 @@ namespace Signorini
       // sum_k w psi~_l v (dim..2dim-1) and its normal sum_k w psi_l n
       // (2dim..3dim-1), global coordinates.
       std::vector<TrilinosWrappers::MPI::Vector> nodal;
-      if (any_friction_node)
+      if (node_statuses.any_friction())
         for (unsigned int c = 0; c < 3 * dim; ++c)
           nodal.push_back(surfaces.writable_multipliers());
 
@@ -171,7 +171,7 @@ namespace Signorini
             continue;
           const Tensor<1, dim> f_t = tangential_force(point);
           const Tensor<1, dim> v   = slip_vector(point);
-          if (friction_node_pair[p])
+          if (node_statuses.friction_by_node(p))
             for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
               for (unsigned int c = 0; c < dim; ++c)
                 {
@@ -189,7 +189,7 @@ namespace Signorini
                    scales.measurable(p, f_t, v))
             add_slip_sample(r, f_t, v, point.force * point.normal, mu);
         }
-      if (any_friction_node)
+      if (node_statuses.any_friction())
         add_node_slip_samples(nodal, scales, result);
 
       for (auto &r : result)
@@ -202,7 +202,7 @@ namespace Signorini
           r.max_deviation     = Utilities::MPI::max(r.max_deviation, comm);
         }
       for (unsigned int p = 0; p < n_pairs; ++p)
-        result[p].by_node = node_status_pair[p];
+        result[p].by_node = node_statuses.by_node(p);
       return result;
     }
 
@@ -221,15 +221,14 @@ namespace Signorini
         v.compress(VectorOperation::add);
       std::set<types::global_dof_index> seen;
       for (const auto &face : surfaces.slave_faces())
-        if (friction_node_pair[face.pair])
+        if (node_statuses.friction_by_node(face.pair))
           for (const auto dof : face.lambda_dofs)
             {
               if (!surfaces.owned_multipliers().is_element(dof) ||
                   !seen.insert(dof).second)
                 continue;
-              const auto it = node_friction.find(dof);
-              if (it == node_friction.end() || !it->second.active ||
-                  it->second.stick)
+              const auto *nf = node_statuses.find_friction(dof);
+              if (!nf || !nf->active || nf->stick)
                 continue;
               Tensor<1, dim> F, W, n;
               for (unsigned int c = 0; c < dim; ++c)

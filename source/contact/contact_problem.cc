@@ -28,7 +28,7 @@ namespace Signorini
 {
   namespace Contact
   {
-    using internal::pair_name;
+    using internal::add_entry;
 
 
     template <int dim>
@@ -49,20 +49,16 @@ namespace Signorini
         , surfaces(parameters, mapping, fe, dof_handler, materials, comm)
         , pairing(parameters, surfaces, std::move(obstacles_in), comm)
         , coefficients(parameters.contact)
-        , history(parameters.contact, surfaces, node_status_pair, comm)
+        , node_statuses(parameters.contact, surfaces, pairing, coefficients)
+        , history(parameters.contact,
+                  surfaces,
+                  node_statuses.pairs_by_node(),
+                  comm)
     {
       const auto &contact = parameters.contact;
       for (unsigned int p = 0; p < contact.pairs.size(); ++p)
         {
           const auto &pair = contact.pairs[p];
-          // Statuses per multiplier node: integration-point rules, meshed
-          // master (the others have one law per node).
-          node_status_pair.push_back(contact.rule != IntegrationRule::nodal &&
-                                     pair.master_is_body());
-          friction_node_pair.push_back(node_status_pair.back() &&
-                                       pair.friction > 0);
-          any_friction_node = any_friction_node || friction_node_pair.back();
-          any_node_status   = any_node_status || node_status_pair.back();
           // Newton on the geometry (projection, normal and curvature at
           // every iterate) for frictionless rigid obstacles; the geometric
           // loop for the others (doc/robustness.md, "Geometry in Newton").
@@ -89,7 +85,7 @@ namespace Signorini
                                ConditionalOStream              &pcout)
     {
       const auto counts =
-        surfaces.setup(u_constraints, owned_u, node_status_pair);
+        surfaces.setup(u_constraints, owned_u, node_statuses.pairs_by_node());
       set_coefficients();
       pairing.setup();
       print_setup(pcout, counts);
@@ -145,46 +141,6 @@ namespace Signorini
         pcout << "  " << counts.n_hanging
               << " hanging slave node(s): multipliers interpolated"
               << std::endl;
-    }
-
-
-    template <int dim>
-    double
-    ContactProblem<dim>::point_gap(
-      const ContactPoint                  &point,
-      const TrilinosWrappers::MPI::Vector &state) const
-    {
-      if (!point.paired)
-        return -std::numeric_limits<double>::max();
-      const Point<dim> x_e = slave_position(point, state);
-      const Point<dim> x_m =
-        point.master_face < 0 ?
-          point.x_m_rigid :
-          surfaces.master_position(point.master_face, point.N_m, state);
-      return (x_e - x_m) * point.normal +
-             parameters.contact.pairs[surfaces.slave_faces()[point.face].pair]
-               .gap_offset;
-    }
-
-
-    template <int dim>
-    Tensor<1, dim - 1>
-    ContactProblem<dim>::point_slip(
-      const ContactPoint                  &point,
-      const TrilinosWrappers::MPI::Vector &state,
-      const TrilinosWrappers::MPI::Vector &start) const
-    {
-      // v = P (Delta u^e - Delta u^m), in the tangent basis of the point.
-      Tensor<1, dim> v =
-        slave_position(point, state) - slave_position(point, start);
-      v -=
-        point.master_face < 0 ?
-          point.rigid_increment :
-          surfaces.master_increment(point.master_face, point.N_m, state, start);
-      Tensor<1, dim - 1> t;
-      for (unsigned int k = 0; k < dim - 1; ++k)
-        t[k] = v * point.tangents[k];
-      return t;
     }
 
 
@@ -300,8 +256,11 @@ namespace Signorini
     std::shared_ptr<const typename ContactProblem<dim>::PointsState>
     ContactProblem<dim>::save_points() const
     {
-      return std::make_shared<const PointsState>(PointsState{
-        pairing.points(), node_active, node_friction, history.save()});
+      return std::make_shared<const PointsState>(
+        PointsState{pairing.points(),
+                    node_statuses.normal_statuses(),
+                    node_statuses.friction_statuses(),
+                    history.save()});
     }
 
 
@@ -310,8 +269,8 @@ namespace Signorini
     ContactProblem<dim>::restore_points(const PointsState &saved)
     {
       pairing.points() = saved.points;
-      node_active   = saved.node_active;
-      node_friction = saved.node_friction;
+      node_statuses.normal_statuses()   = saved.node_active;
+      node_statuses.friction_statuses() = saved.node_friction;
       history.restore(saved.history);
     }
 
@@ -329,6 +288,65 @@ namespace Signorini
                             point.x_ref.norm(),
                           2);
       return std::sqrt(Utilities::MPI::sum(sum, comm));
+    }
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::set_initial_multipliers(
+      const TrilinosWrappers::MPI::Vector &state,
+      TrilinosWrappers::MPI::Vector       &state_owned) const
+    {
+      const auto status = parameters.contact.initial_status;
+      // lambda_aug = lambda - rho_n g = -/+ delta at every point, as the
+      // psi-weighted average over the node's points. 'penetrating': the
+      // points that touch (g >= 0 up to the round-off of mesh coordinates,
+      // 1e-8 of the face size) start closed, as where they penetrate; the
+      // others keep lambda = 0 (lambda_aug = -rho_n g: open).
+      const double touch_tolerance = 1e-8;
+      auto         num             = surfaces.writable_multipliers();
+      auto         den             = surfaces.writable_multipliers();
+      for (const auto &point : pairing.points())
+        {
+          const auto        &face = surfaces.slave_faces()[point.face];
+          const unsigned int p    = face.pair;
+          const double       g    = pairing.gap(point, state);
+          // delta: half the zero friction threshold of the law (see
+          // law_parameters), so that lambda_aug = -/+ delta sets the normal
+          // status strictly while the friction of a point closed this way
+          // starts inactive, as for a point that has just closed
+          // (formulation.md 3.3). A larger delta would be a tiny nonzero
+          // threshold: Lambda = F_t / (mu delta) of order 1e8 at the first
+          // iterate.
+          const double delta = 0.5 * coefficients.law(p).zero_threshold;
+          if (status != InitialStatus::open && !point.paired)
+            continue;
+          double target;
+          if (status == InitialStatus::closed)
+            target = std::min(0.,
+                              coefficients.normal(p) *
+                                std::max(g, -1e300 / coefficients.normal(p))) -
+                     delta;
+          else if (status == InitialStatus::penetrating)
+            target =
+              g >= -touch_tolerance * surfaces.pair_scales().face_size[p] ?
+                -delta :
+                0.;
+          else
+            target = std::max(0., coefficients.normal(p) * g) + delta;
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const double w = point.weight * point.psi[l];
+              add_entry(num, face.lambda_dofs[l], w * target);
+              add_entry(den, face.lambda_dofs[l], w);
+            }
+        }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : surfaces.owned_multipliers())
+        if (i < surfaces.n_u() + surfaces.n_lambda() && den[i] != 0)
+          state_owned[i] = num[i] / den[i];
+      state_owned.compress(VectorOperation::insert);
     }
 
 

@@ -64,7 +64,8 @@ namespace Signorini
       for (unsigned int l = 0; l < n_l; ++l)
         e.rows[l] =
           e.by_node ?
-            node_status_row(node_active.at(face.lambda_dofs[l]) && point.paired,
+            node_status_row(node_statuses.active(face.lambda_dofs[l]) &&
+                              point.paired,
                             point.paired ? e.s.gap : 0.,
                             state[face.lambda_dofs[l]],
                             e.s.normal,

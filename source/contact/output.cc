@@ -42,7 +42,7 @@ namespace Signorini
       // multipliers the traction at single points oscillates, its nodal
       // forces do not.
       std::vector<TrilinosWrappers::MPI::Vector> nodal;
-      if (any_node_status)
+      if (node_statuses.any())
         for (unsigned int c = 0; c < 2 * dim; ++c)
           nodal.push_back(surfaces.writable_multipliers());
       for (const auto &point : pairing.points())
@@ -50,7 +50,7 @@ namespace Signorini
           const auto &face = surfaces.slave_faces()[point.face];
           auto       &r    = result[face.pair];
           r.force += point.weight * point.force;
-          if (node_status_pair[face.pair])
+          if (node_statuses.by_node(face.pair))
             {
               for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
                 for (unsigned int c = 0; c < dim; ++c)
@@ -86,14 +86,14 @@ namespace Signorini
           r.n_slip +=
             point.status == PointStatus::slip && point.friction_active;
         }
-      if (any_node_status)
+      if (node_statuses.any())
         {
           for (auto &v : nodal)
             v.compress(VectorOperation::add);
           // Each owned node once (the owner adds it).
           std::set<types::global_dof_index> seen;
           for (const auto &face : surfaces.slave_faces())
-            if (node_status_pair[face.pair])
+            if (node_statuses.by_node(face.pair))
               for (const auto dof : face.lambda_dofs)
                 if (surfaces.owned_multipliers().is_element(dof) &&
                     seen.insert(dof).second)

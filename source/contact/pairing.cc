@@ -536,6 +536,46 @@ namespace Signorini
     }
 
 
+    template <int dim>
+    double
+    Pairing<dim>::gap(const ContactPoint<dim>             &point,
+                      const TrilinosWrappers::MPI::Vector &state) const
+    {
+      if (!point.paired)
+        return -std::numeric_limits<double>::max();
+      const Point<dim> x_e =
+        surfaces.slave_position(point.face, point.psi, point.x_ref, state);
+      const Point<dim> x_m =
+        point.master_face < 0 ?
+          point.x_m_rigid :
+          surfaces.master_position(point.master_face, point.N_m, state);
+      return (x_e - x_m) * point.normal +
+             parameters.contact.pairs[surfaces.slave_faces()[point.face].pair]
+               .gap_offset;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim - 1>
+    Pairing<dim>::slip(const ContactPoint<dim>             &point,
+                       const TrilinosWrappers::MPI::Vector &state,
+                       const TrilinosWrappers::MPI::Vector &start) const
+    {
+      // v = P (Delta u^e - Delta u^m), in the tangent basis of the point.
+      Tensor<1, dim> v =
+        surfaces.slave_position(point.face, point.psi, point.x_ref, state) -
+        surfaces.slave_position(point.face, point.psi, point.x_ref, start);
+      v -=
+        point.master_face < 0 ?
+          point.rigid_increment :
+          surfaces.master_increment(point.master_face, point.N_m, state, start);
+      Tensor<1, dim - 1> t;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        t[k] = v * point.tangents[k];
+      return t;
+    }
+
+
     template class Pairing<2>;
     template class Pairing<3>;
   } // namespace Contact

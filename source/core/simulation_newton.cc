@@ -1,45 +1,17 @@
 // Load steps and the generalised Newton method: the solve of one step, the
 // Newton loop with its convergence rules, line search, failure reports, the
 // Jacobian check.
-#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
-#include <deal.II/distributed/grid_refinement.h>
-#include <deal.II/distributed/solution_transfer.h>
-#include <deal.II/dofs/dof_renumbering.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/base/bounding_box.h>
-#include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q1.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/lac/trilinos_sparsity_pattern.h>
-#include <deal.II/numerics/data_out.h>
-#include <deal.II/numerics/error_estimator.h>
-#include <deal.II/numerics/vector_tools.h>
 
 #include <signorini/contact/jacobian_check.h>
-#include <signorini/core/input_checks.h>
 #include <signorini/core/simulation.h>
 
-
 #include <algorithm>
-#include <signorini/geometry/mesh_checks.h>
-#include <signorini/geometry/scene.h>
-#include <signorini/material/projected_volumetric_strain.h>
 #include <signorini/postprocess/format.h>
-#include <signorini/postprocess/stress_postprocessor.h>
-#include <signorini/solver/roundoff.h>
 
 #include <cmath>
-#include <chrono>
-#include <filesystem>
-#include <unistd.h>
-#include <fstream>
 #include <iomanip>
-#include <functional>
 #include <limits>
-#include <set>
 #include <sstream>
 
 namespace Signorini

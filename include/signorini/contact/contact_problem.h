@@ -23,6 +23,7 @@
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/contact_point.h>
 #include <signorini/contact/contact_statistics.h>
+#include <signorini/contact/node_statuses.h>
 #include <signorini/contact/obstacles/interface.h>
 #include <signorini/contact/pairing.h>
 #include <signorini/contact/projection.h>
@@ -58,7 +59,7 @@
  *                           exclusions, constraint lines, positions X + u
  *   pairing.cc              class Pairing: the contact points, search,
  *                           projection, mortar segmentation
- *   statuses.cc             statuses per node, initial multipliers
+ *   node_statuses.cc        class NodeStatuses: statuses per node
  *   active_set_history.cc   class ActiveSetHistory: anti-cycling, freezes,
  *                           releases, extrapolation
  *   assembly.cc             the point loop: point state and law response
@@ -210,7 +211,8 @@ namespace Signorini
       void
       start_newton_solve()
       {
-        history.start_newton_solve(pairing.points(), node_friction);
+        history.start_newton_solve(pairing.points(),
+                                   node_statuses.friction_statuses());
       }
       unsigned int
       release_frozen(unsigned int &refrozen)
@@ -224,7 +226,8 @@ namespace Signorini
       unsigned int
       extrapolate_releases()
       {
-        return history.extrapolate_releases(pairing.points(), node_active);
+        return history.extrapolate_releases(pairing.points(),
+                                            node_statuses.normal_statuses());
       }
       void
       clear_releases()
@@ -452,45 +455,6 @@ namespace Signorini
                  const std::vector<types::global_dof_index> &cell_dofs,
                  std::vector<types::global_dof_index> &      dofs) const;
 
-      /** Current position X + u of a contact point. */
-      Point<dim>
-      slave_position(const ContactPoint                  &point,
-                     const TrilinosWrappers::MPI::Vector &state) const
-      {
-        return surfaces.slave_position(point.face,
-                                       point.psi,
-                                       point.x_ref,
-                                       state);
-      }
-
-      /** g of formulation.md 2 at @p point (-max if unpaired). */
-      double
-      point_gap(const ContactPoint &                 point,
-                const TrilinosWrappers::MPI::Vector &state) const;
-
-      /**
-       * Statuses per multiplier node (integration-point rules on meshed
-       * masters): the weighted gaps of the node-status pairs, summed over
-       * all ranks,
-       * decide node_active; returns the number of owned nodes whose status
-       * changed.
-       */
-      unsigned int
-      decide_node_statuses(const TrilinosWrappers::MPI::Vector &state,
-                           const TrilinosWrappers::MPI::Vector &start,
-                           const bool                           new_iterate,
-                           ContactStatistics &                  stats);
-
-
-      /** Tangent coordinates T^T v of the slip increment v of
-       * formulation.md 2 at a paired @p point (from @p start). */
-      Tensor<1, dim - 1>
-      point_slip(const ContactPoint &                 point,
-                 const TrilinosWrappers::MPI::Vector &state,
-                 const TrilinosWrappers::MPI::Vector &start) const;
-
-
-
       // The assembly of one contact point (source/contact/assembly.cc,
       // local_rows.cc; the data in source/contact/helpers.h).
       struct PointEvaluation;
@@ -537,11 +501,6 @@ namespace Signorini
                                  const PointEvaluation &e,
                                  FullMatrix<double> &   K) const;
 
-      /** The law response of a point of a node-status pair. */
-      PointResponse<dim>
-      node_status_response(const ContactPoint &   point,
-                           const PointState<dim> &s) const;
-
       const Parameters &     parameters;
       const Mapping<dim>    &mapping;
       const DoFHandler<dim> &dof_handler;
@@ -553,22 +512,12 @@ namespace Signorini
       Pairing<dim> pairing;
 
       Coefficients        coefficients; // rho_n, rho_t, law parameters per pair
-      std::vector<bool>   node_status_pair; // per pair
+      // Statuses per multiplier node (node_statuses.h).
+      NodeStatuses<dim> node_statuses;
       // Newton on the geometry, per pair: frictionless rigid obstacles.
       std::vector<bool> newton_geometry_pair;
       bool              pairing_exact = false; // see pairing_is_exact()
-      bool linear_statuses   = false; // see linear_at_fixed_statuses()
-      bool                any_node_status = false;
-      // Normal status of the multiplier nodes of node-status pairs (key:
-      // lambda DoF; the nodes of this rank's slave faces).
-      std::map<types::global_dof_index, bool> node_active;
-      // Friction status of the multiplier nodes of frictional node-status
-      // pairs ('Statuses = node'; key: lambda DoF): active (in
-      // contact, nonzero threshold), stick, and H_l = Lambda_l +
-      // rho_t W_l / D_l with the weighted slip W_l (theory.md).
-      std::map<types::global_dof_index, NodeFriction> node_friction;
-      std::vector<bool> friction_node_pair; // per pair
-      bool              any_friction_node = false;
+      bool linear_statuses            = false; // see linear_at_fixed_statuses()
       ActiveSetHistory<dim> history;
     };
   } // namespace Contact

@@ -118,6 +118,18 @@ namespace Signorini
       std::string
       rule_description() const;
 
+      /** g of formulation.md 2 at @p point (-max if unpaired). */
+      double
+      gap(const ContactPoint<dim>             &point,
+          const TrilinosWrappers::MPI::Vector &state) const;
+
+      /** Tangent coordinates T^T v of the slip increment v of
+       * formulation.md 2 at a paired @p point (from @p start). */
+      Tensor<1, dim - 1>
+      slip(const ContactPoint<dim>             &point,
+           const TrilinosWrappers::MPI::Vector &state,
+           const TrilinosWrappers::MPI::Vector &start) const;
+
     private:
       using Tree  = RTree<std::pair<BoundingBox<dim>, unsigned int>>;
       using Nodes = std::vector<std::vector<Point<dim>>>;

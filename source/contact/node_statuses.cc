@@ -1,0 +1,238 @@
+// Contact statuses per multiplier node.
+#include <deal.II/base/mpi.h>
+
+#include <signorini/contact/distributed_vectors.h>
+#include <signorini/contact/node_statuses.h>
+
+#include "helpers.h"
+
+#include <algorithm>
+#include <set>
+
+namespace Signorini
+{
+  namespace Contact
+  {
+    using internal::add_entry;
+
+
+    template <int dim>
+    struct NodeStatuses<dim>::NodeSums
+    {
+      TrilinosWrappers::MPI::Vector              G, D, P;
+      std::vector<TrilinosWrappers::MPI::Vector> W;
+    };
+
+
+    template <int dim>
+    NodeStatuses<dim>::NodeStatuses(const ContactParameters &parameters,
+                                    const Surfaces<dim>     &surfaces,
+                                    const Pairing<dim>      &pairing,
+                                    const Coefficients      &coefficients)
+        : surfaces(surfaces)
+        , pairing(pairing)
+        , coefficients(coefficients)
+    {
+      for (const auto &pair : parameters.pairs)
+        {
+          // Statuses per multiplier node: integration-point rules, meshed
+          // master (the others have one law per node).
+          node_status_pair.push_back(
+            parameters.rule != IntegrationRule::nodal && pair.master_is_body());
+          friction_node_pair.push_back(node_status_pair.back() &&
+                                       pair.friction > 0);
+          any_friction_node = any_friction_node || friction_node_pair.back();
+          any_node_status   = any_node_status || node_status_pair.back();
+        }
+    }
+
+
+    template <int dim>
+    PointResponse<dim>
+    NodeStatuses<dim>::response(const ContactPoint<dim> &point,
+                                const PointState<dim>   &s) const
+    {
+      // The multiplier force -lambda n (the law's -lambda_aug n without
+      // the augmentation; lambda = 0 at free nodes); the point is labelled
+      // with the status of its nearest node (statistics and output).
+      PointResponse<dim> r{};
+      const auto        &face = surfaces.slave_faces()[point.face];
+      const auto         nearest =
+        std::max_element(point.psi.begin(), point.psi.end()) -
+        point.psi.begin();
+      r.in_contact = point.paired && node_active.at(face.lambda_dofs[nearest]);
+      r.status     = r.in_contact ? PointStatus::slip : PointStatus::free;
+      r.friction_active = false;
+      if (r.in_contact && friction_node_pair[face.pair])
+        {
+          // Labelled with the friction status of the same node; the
+          // friction force and rows are the assembly's (per node).
+          const auto &nf    = node_friction.at(face.lambda_dofs[nearest]);
+          r.friction_active = nf.active;
+          if (nf.active && nf.stick)
+            r.status = PointStatus::stick;
+          else if (nf.active)
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              r.slip_direction += nf.H[k] / nf.H.norm() * s.tangents[k];
+        }
+      if (point.paired)
+        {
+          r.force          = -s.lambda * s.normal;
+          r.dforce_dlambda = -s.normal;
+        }
+      return r;
+    }
+
+
+    template <int dim>
+    typename NodeStatuses<dim>::NodeSums
+    NodeStatuses<dim>::gather_sums(
+      const TrilinosWrappers::MPI::Vector &state,
+      const TrilinosWrappers::MPI::Vector &start) const
+    {
+      // Weighted gap G_l and weight D_l of every node (faces of all ranks).
+      // P_l: the paired share of the node (psi >= 0); a node without
+      // paired points has no gap and stays free.
+      auto G = surfaces.writable_multipliers();
+      auto D = surfaces.writable_multipliers();
+      auto P = surfaces.writable_multipliers();
+      // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
+      // component k in the vector of index k (by the node's lambda DoF).
+      std::vector<TrilinosWrappers::MPI::Vector> W;
+      if (any_friction_node)
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          W.push_back(surfaces.writable_multipliers());
+      for (const auto &point : pairing.points())
+        {
+          const auto &face = surfaces.slave_faces()[point.face];
+          if (!node_status_pair[face.pair])
+            continue;
+          const double g    = point.paired ? pairing.gap(point, state) : 0.;
+          const bool   slip = point.paired && friction_node_pair[face.pair];
+          const auto   v =
+            slip ? pairing.slip(point, state, start) : Tensor<1, dim - 1>();
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const double w = point.weight * point.psi_lambda[l];
+              add_entry(G, face.lambda_dofs[l], w * g);
+              add_entry(D, face.lambda_dofs[l], w);
+              if (point.paired)
+                add_entry(P, face.lambda_dofs[l], point.weight * point.psi[l]);
+              if (slip)
+                for (unsigned int k = 0; k < dim - 1; ++k)
+                  add_entry(W[k], face.lambda_dofs[l], w * v[k]);
+            }
+        }
+      NodeSums sums{surfaces.ghosted_multipliers(),
+                    surfaces.ghosted_multipliers(),
+                    surfaces.ghosted_multipliers(),
+                    {}};
+      G.compress(VectorOperation::add);
+      D.compress(VectorOperation::add);
+      P.compress(VectorOperation::add);
+      sums.G = G;
+      sums.D = D;
+      sums.P = P;
+      for (unsigned int k = 0; k < W.size(); ++k)
+        {
+          W[k].compress(VectorOperation::add);
+          sums.W.push_back(surfaces.ghosted_multipliers());
+          sums.W[k] = W[k];
+        }
+      return sums;
+    }
+
+
+    template <int dim>
+    unsigned int
+    NodeStatuses<dim>::decide(const TrilinosWrappers::MPI::Vector &state,
+                              const TrilinosWrappers::MPI::Vector &start,
+                              const bool                           new_iterate,
+                              ActiveSetHistory<dim>               &history,
+                              ContactStatistics                   &stats)
+    {
+      const NodeSums sums    = gather_sums(state, start);
+      unsigned int   changed = 0;
+      for (const auto &face : surfaces.slave_faces())
+        if (node_status_pair[face.pair])
+          for (const auto dof : face.lambda_dofs)
+            {
+              const bool active =
+                sums.P[dof] > 0 &&
+                node_in_contact(state[dof],
+                                sums.G[dof],
+                                sums.D[dof],
+                                coefficients.normal(face.pair)) &&
+                !history.node_released(dof);
+              const auto it = node_active.find(dof);
+              if (it != node_active.end() && it->second == active)
+                continue;
+              // Counted once, by the owner (a node is on several faces).
+              if (surfaces.owned_multipliers().is_element(dof) &&
+                  (it != node_active.end() || active))
+                ++changed;
+              node_active[dof] = active;
+            }
+      if (any_friction_node)
+        changed += decide_friction(state, sums, new_iterate, history, stats);
+      return changed;
+    }
+
+
+    template <int dim>
+    unsigned int
+    NodeStatuses<dim>::decide_friction(
+      const TrilinosWrappers::MPI::Vector &state,
+      const NodeSums                      &sums,
+      const bool                           new_iterate,
+      ActiveSetHistory<dim>               &history,
+      ContactStatistics                   &stats)
+    {
+      // Friction status per node (theory.md, "Friction status per node"):
+      // active if in contact with a threshold above zero (formulation.md
+      // 3.3); H_l = Lambda_l + rho_t W_l / D_l; stick iff |H_l| <= 1 (the
+      // round-off tie as in the point law). Each node once (it is on
+      // several faces), then its anti-cycling.
+      unsigned int                      changed = 0;
+      std::set<types::global_dof_index> seen;
+      for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
+        {
+          const auto &face = surfaces.slave_faces()[f];
+          if (!friction_node_pair[face.pair])
+            continue;
+          const auto law = coefficients.law(face.pair);
+          for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
+            {
+              const auto dof = face.lambda_dofs[l];
+              if (!seen.insert(dof).second)
+                continue;
+              NodeFriction<dim> nf;
+              nf.active = node_active.at(dof) &&
+                          std::abs(state[dof]) > law.zero_threshold &&
+                          sums.D[dof] > 0;
+              if (nf.active)
+                {
+                  for (unsigned int k = 0; k < dim - 1; ++k)
+                    nf.H[k] = state[face.friction_dofs[l * (dim - 1) + k]] +
+                              law.rho_t * sums.W[k][dof] / sums.D[dof];
+                  nf.stick = nf.H.norm() <= 1. + stick_tie;
+                }
+              const bool  owned = surfaces.owned_multipliers().is_element(dof);
+              const auto *previous = find_friction(dof);
+              const auto  used     = history.node_anti_cycling(
+                dof, nf, previous, new_iterate, owned, stats);
+              if (owned &&
+                  ActiveSetHistory<dim>::friction_status_differs(previous,
+                                                                 used))
+                ++changed;
+              node_friction[dof] = used;
+            }
+        }
+      return changed;
+    }
+
+
+    template class NodeStatuses<2>;
+    template class NodeStatuses<3>;
+  } // namespace Contact
+} // namespace Signorini
