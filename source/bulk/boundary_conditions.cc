@@ -6,6 +6,7 @@
 
 #include <signorini/bulk/boundary_conditions.h>
 #include <signorini/core/errors.h>
+#include <signorini/core/input_checks.h>
 #include <signorini/postprocess/format.h>
 
 #include <algorithm>
@@ -20,40 +21,6 @@ namespace Signorini
   {
     namespace
     {
-      // FunctionParser of x, y(, z), t and the user's constants; an
-      // expression that does not parse is an InputError naming @p where.
-      template <int dim>
-      std::unique_ptr<FunctionParser<dim>>
-      make_function(const std::vector<std::string>      &expressions,
-                    const std::map<std::string, double> &constants,
-                    const std::string                   &where)
-      {
-        auto f = std::make_unique<FunctionParser<dim>>(expressions.size());
-        const std::string variables = dim == 2 ? "x,y,t" : "x,y,z,t";
-        try
-          {
-            f->initialize(variables, expressions, constants, true);
-            // muparser reports some errors only on evaluation.
-            f->value(Point<dim>(), 0);
-          }
-        catch (const ExceptionBase &e)
-          {
-            std::ostringstream info;
-            e.print_info(info);
-            std::string text = info.str();
-            std::replace(text.begin(), text.end(), '\n', ' ');
-            std::string all;
-            for (const auto &expression : expressions)
-              all += (all.empty() ? "" : "; ") + expression;
-            throw InputError(
-              where + ": cannot parse the expression(s) '" +
-              Utilities::trim(all) + "' (variables: " + variables +
-              ", plus 'Function constants'). " + Utilities::trim(text));
-          }
-        return f;
-      }
-
-
       // The values of one Dirichlet condition as a function with one
       // component per displacement component: its expression k gives
       // component components[k]; the others (masked out) are zero.
@@ -112,15 +79,15 @@ namespace Signorini
       };
       for (unsigned int k = 0; k < parameters.dirichlet.size(); ++k)
         dirichlet_functions.push_back(
-          make_function<dim>(parameters.dirichlet[k].values,
-                             parameters.constants,
-                             where("Dirichlet " + std::to_string(k + 1))));
+          parse_function<dim>(parameters.dirichlet[k].values,
+                              parameters.constants,
+                              where("Dirichlet " + std::to_string(k + 1))));
       for (unsigned int k = 0; k < parameters.neumann.size(); ++k)
         neumann_functions.push_back(
-          make_function<dim>(parameters.neumann[k].values,
-                             parameters.constants,
-                             where("Neumann " + std::to_string(k + 1))));
-      body_force_function = make_function<dim>(
+          parse_function<dim>(parameters.neumann[k].values,
+                              parameters.constants,
+                              where("Neumann " + std::to_string(k + 1))));
+      body_force_function = parse_function<dim>(
         std::vector<std::string>(parameters.body_force.begin(),
                                  parameters.body_force.begin() + dim),
         parameters.constants,

@@ -505,4 +505,51 @@ namespace Signorini
       throw InputError("subsection 'Output', parameter 'Directory': " +
                        problem);
   }
+
+
+  template <int dim>
+  std::unique_ptr<FunctionParser<dim>>
+  parse_function(const std::vector<std::string>      &expressions,
+                 const std::map<std::string, double> &constants,
+                 const std::string                   &where)
+  {
+    auto f = std::make_unique<FunctionParser<dim>>(expressions.size());
+    const std::string variables = dim == 2 ? "x,y,t" : "x,y,z,t";
+    std::string       problem;
+    {
+      CerrCapture silence; // the reason goes into the InputError
+      try
+        {
+          f->initialize(variables, expressions, constants, true);
+          // muparser parses on the first evaluation.
+          f->value(Point<dim>(), 0);
+        }
+      catch (const ExceptionBase &e)
+        {
+          problem = "muparser: " + parser_message(e);
+        }
+      catch (...)
+        {
+          problem = "muparser refused it";
+        }
+    }
+    if (problem.empty())
+      return f;
+    std::string all;
+    for (const auto &expression : expressions)
+      all += (all.empty() ? "" : "; ") + expression;
+    throw InputError(where + ": cannot parse the expression(s) '" +
+                     Utilities::trim(all) + "' (variables: " + variables +
+                     ", plus 'Function constants'); " + problem);
+  }
+
+
+  template std::unique_ptr<FunctionParser<2>>
+  parse_function<2>(const std::vector<std::string> &,
+                    const std::map<std::string, double> &,
+                    const std::string &);
+  template std::unique_ptr<FunctionParser<3>>
+  parse_function<3>(const std::vector<std::string> &,
+                    const std::map<std::string, double> &,
+                    const std::string &);
 } // namespace Signorini

@@ -7,6 +7,8 @@
 
 #include <deal.II/base/function_parser.h>
 
+#include <signorini/core/input_checks.h>
+
 #include <map>
 #include <memory>
 #include <string>
@@ -24,9 +26,9 @@ namespace Signorini
     {
       if (expressions.empty())
         return nullptr;
-      auto f = std::make_unique<dealii::FunctionParser<dim>>(expressions.size());
-      f->initialize(dim == 2 ? "x,y,t" : "x,y,z,t", expressions, constants, true);
-      return f;
+      return parse_function<dim>(expressions,
+                                 constants,
+                                 "subsection 'Reference solution'");
     }
   } // namespace Postprocess
 } // namespace Signorini

@@ -1,12 +1,14 @@
 #ifndef signorini_core_input_checks_h
 #define signorini_core_input_checks_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/mpi.h>
 
 #include <signorini/core/parameters.h>
 
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -103,6 +105,19 @@ namespace Signorini
   void
   check_output_directory(const std::string &directory,
                          const MPI_Comm     mpi_communicator);
+
+  /**
+   * A FunctionParser of x, y(, z) and t with the 'Function constants'
+   * @p constants, one component per entry of @p expressions. The
+   * expressions were checked when the parameters were read
+   * (check_expressions()); one that still does not parse is an InputError
+   * naming @p where (a subsection and parameter).
+   */
+  template <int dim>
+  std::unique_ptr<FunctionParser<dim>>
+  parse_function(const std::vector<std::string>      &expressions,
+                 const std::map<std::string, double> &constants,
+                 const std::string                   &where);
 } // namespace Signorini
 
 #endif

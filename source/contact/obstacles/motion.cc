@@ -9,35 +9,6 @@ namespace Signorini
 {
   namespace Obstacles
   {
-    namespace
-    {
-      // A FunctionParser of t (x, y, z are there only because every
-      // expression of the input may use them; they are evaluated at 0).
-      template <int dim>
-      std::unique_ptr<FunctionParser<dim>>
-      parse_of_t(const std::vector<std::string> &     expressions,
-                 const std::map<std::string, double> &constants,
-                 const std::string &                  where)
-      {
-        auto function =
-          std::make_unique<FunctionParser<dim>>(expressions.size());
-        try
-          {
-            CerrCapture capture;
-            function->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
-                                 expressions,
-                                 constants,
-                                 true);
-            function->value(Point<dim>(), 0);
-          }
-        catch (const ExceptionBase &)
-          {
-            throw InputError(where + ": cannot parse the expressions; give "
-                                     "expressions of t separated by ';'.");
-          }
-        return function;
-      }
-    } // namespace
 
 
     template <int dim>
@@ -52,10 +23,11 @@ namespace Signorini
                          std::to_string(dim) +
                          " expressions separated by ';'.");
       translation =
-        parse_of_t<dim>(std::vector<std::string>(translation_in.begin(),
-                                                 translation_in.begin() + dim),
-                        constants,
-                        where + ", parameter 'Obstacle motion'");
+        parse_function<dim>(std::vector<std::string>(translation_in.begin(),
+                                                     translation_in.begin() +
+                                                       dim),
+                            constants,
+                            where + ", parameter 'Obstacle motion'");
       const unsigned int n_rotation = dim == 2 ? 1 : 3;
       const bool         none =
         rotation_in.size() == 1 && Utilities::trim(rotation_in[0]) == "0";
@@ -68,9 +40,10 @@ namespace Signorini
                                   "by ';'")) +
           ", or 0.");
       if (!none)
-        rotation = parse_of_t<dim>(rotation_in,
-                                   constants,
-                                   where + ", parameter 'Obstacle rotation'");
+        rotation =
+          parse_function<dim>(rotation_in,
+                              constants,
+                              where + ", parameter 'Obstacle rotation'");
       if (centre_in.size() < dim)
         throw InputError(where + ", parameter 'Rotation centre': give " +
                          std::to_string(dim) + " coordinates.");
