@@ -50,6 +50,13 @@ namespace Signorini
         , pairing(parameters, surfaces, std::move(obstacles_in), comm)
         , coefficients(parameters.contact)
         , node_statuses(parameters.contact, surfaces, pairing, coefficients)
+        , output(parameters,
+                 fe,
+                 dof_handler,
+                 surfaces,
+                 pairing,
+                 node_statuses,
+                 comm)
         , history(parameters.contact,
                   surfaces,
                   node_statuses.pairs_by_node(),

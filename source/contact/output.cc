@@ -1,5 +1,5 @@
 // Contact output: pair summaries, gathered point records, CSV, nodal fields,
-// transfer of multipliers across refinement.
+// cells of the contact zone.
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -9,8 +9,8 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/rtree.h>
 
-#include <signorini/contact/contact_problem.h>
 #include <signorini/contact/distributed_vectors.h>
+#include <signorini/contact/output.h>
 #include <signorini/contact/segmentation.h>
 #include <signorini/postprocess/output_files.h>
 
@@ -32,8 +32,27 @@ namespace Signorini
 
 
     template <int dim>
-    std::vector<typename ContactProblem<dim>::PairSummary>
-    ContactProblem<dim>::summary() const
+    Output<dim>::Output(const Parameters        &parameters,
+                        const FESystem<dim>     &fe,
+                        const DoFHandler<dim>   &dof_handler,
+                        const Surfaces<dim>     &surfaces,
+                        const Pairing<dim>      &pairing,
+                        const NodeStatuses<dim> &node_statuses,
+                        const MPI_Comm           comm)
+        : parameters(parameters)
+        , fe(fe)
+        , dof_handler(dof_handler)
+        , surfaces(surfaces)
+        , pairing(pairing)
+        , node_statuses(node_statuses)
+        , comm(comm)
+    {
+    }
+
+
+    template <int dim>
+    std::vector<typename Output<dim>::PairSummary>
+    Output<dim>::summary() const
     {
       std::vector<PairSummary> result(parameters.contact.pairs.size());
       // Node-status pairs: the normal and tangential forces in the contact
@@ -144,8 +163,8 @@ namespace Signorini
 
 
     template <int dim>
-    std::vector<typename ContactProblem<dim>::PointRecord>
-    ContactProblem<dim>::gather_points() const
+    std::vector<typename Output<dim>::PointRecord>
+    Output<dim>::gather_points() const
     {
       std::vector<PointRecord> mine;
       for (const auto &point : pairing.points())
@@ -183,7 +202,7 @@ namespace Signorini
 
     template <int dim>
     std::string
-    ContactProblem<dim>::write_csv(const std::string &filename) const
+    Output<dim>::write_csv(const std::string &filename) const
     {
       const auto records = gather_points();
       if (Utilities::MPI::this_mpi_process(comm) != 0)
@@ -231,7 +250,7 @@ namespace Signorini
 
     template <int dim>
     std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>>
-    ContactProblem<dim>::nodal_fields(const DoFHandler<dim> &scalar_dofs) const
+    Output<dim>::nodal_fields(const DoFHandler<dim> &scalar_dofs) const
     {
       const IndexSet owned = scalar_dofs.locally_owned_dofs();
       IndexSet       relevant;
@@ -298,79 +317,8 @@ namespace Signorini
 
 
     template <int dim>
-    void
-    ContactProblem<dim>::multipliers_to_field(
-      const TrilinosWrappers::MPI::Vector &state,
-      TrilinosWrappers::MPI::Vector       &field) const
-    {
-      // A node may lie on slave faces of several ranks and on none of its
-      // owner's: every rank writes the nodes of its faces (the same
-      // values), averaged through a count.
-      IndexSet touched(dof_handler.n_dofs());
-      for (const auto &face : surfaces.slave_faces())
-        for (const auto d : face.node_dofs)
-          touched.add_index(d);
-      touched.compress();
-      const IndexSet &owned = dof_handler.locally_owned_dofs();
-      auto            num   = writable_vector(owned, touched, comm);
-      auto            den   = writable_vector(owned, touched, comm);
-      for (const auto &face : surfaces.slave_faces())
-        for (unsigned int l = 0; l < face.node_local.size(); ++l)
-          {
-            const auto &info = surfaces.nodes().at(face.node_dofs[l * dim]);
-            for (unsigned int c = 0; c < dim; ++c)
-              {
-                double value = 0;
-                if (c == 0)
-                  value = state[info.lambda];
-                else if (info.friction != numbers::invalid_dof_index)
-                  value = state[info.friction + c - 1];
-                add_entry(num, face.node_dofs[l * dim + c], value);
-                add_entry(den, face.node_dofs[l * dim + c], 1.);
-              }
-          }
-      num.compress(VectorOperation::add);
-      den.compress(VectorOperation::add);
-      for (const auto i : owned)
-        field[i] = den[i] != 0 ? num[i] / den[i] : 0.;
-      field.compress(VectorOperation::insert);
-    }
-
-
-    template <int dim>
-    void
-    ContactProblem<dim>::multipliers_from_field(
-      const TrilinosWrappers::MPI::Vector &field,
-      TrilinosWrappers::MPI::Vector       &state_owned) const
-    {
-      auto num = surfaces.writable_multipliers();
-      auto den = surfaces.writable_multipliers();
-      for (const auto &face : surfaces.slave_faces())
-        for (unsigned int l = 0; l < face.node_local.size(); ++l)
-          {
-            const auto &info = surfaces.nodes().at(face.node_dofs[l * dim]);
-            add_entry(num, info.lambda, field[face.node_dofs[l * dim]]);
-            add_entry(den, info.lambda, 1.);
-            if (info.friction != numbers::invalid_dof_index)
-              for (unsigned int c = 1; c < dim; ++c)
-                {
-                  add_entry(num,
-                            info.friction + c - 1,
-                            field[face.node_dofs[l * dim + c]]);
-                  add_entry(den, info.friction + c - 1, 1.);
-                }
-          }
-      num.compress(VectorOperation::add);
-      den.compress(VectorOperation::add);
-      for (const auto i : surfaces.owned_multipliers())
-        state_owned[i] = den[i] != 0 ? num[i] / den[i] : 0.;
-      state_owned.compress(VectorOperation::insert);
-    }
-
-
-    template <int dim>
     std::vector<typename DoFHandler<dim>::active_cell_iterator>
-    ContactProblem<dim>::contact_zone_cells() const
+    Output<dim>::contact_zone_cells() const
     {
       std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
       std::vector<unsigned int> master_active(surfaces.master_faces().size(),
@@ -394,7 +342,7 @@ namespace Signorini
     }
 
 
-    template class ContactProblem<2>;
-    template class ContactProblem<3>;
+    template class Output<2>;
+    template class Output<3>;
   } // namespace Contact
 } // namespace Signorini

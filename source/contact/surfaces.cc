@@ -12,6 +12,7 @@
 #include <boost/serialization/vector.hpp>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/contact/distributed_vectors.h>
 #include <signorini/contact/projection.h>
 #include <signorini/contact/surfaces.h>
 #include <signorini/core/errors.h>
@@ -30,8 +31,10 @@ namespace Signorini
 {
   namespace Contact
   {
+    using internal::add_entry;
     using internal::offset_of;
     using internal::pair_name;
+    using internal::writable_vector;
 
 
     /**
@@ -648,6 +651,77 @@ namespace Signorini
           mean_u += (x[k] - face.X[k]) / double(face.X.size());
         }
       inside = face.inside + mean_u;
+    }
+
+
+    template <int dim>
+    void
+    Surfaces<dim>::multipliers_to_field(
+      const TrilinosWrappers::MPI::Vector &state,
+      TrilinosWrappers::MPI::Vector       &field) const
+    {
+      // A node may lie on slave faces of several ranks and on none of its
+      // owner's: every rank writes the nodes of its faces (the same
+      // values), averaged through a count.
+      IndexSet touched(dof_handler.n_dofs());
+      for (const auto &face : slave_faces())
+        for (const auto d : face.node_dofs)
+          touched.add_index(d);
+      touched.compress();
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      auto            num   = writable_vector(owned, touched, comm);
+      auto            den   = writable_vector(owned, touched, comm);
+      for (const auto &face : slave_faces())
+        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+          {
+            const auto &info = nodes().at(face.node_dofs[l * dim]);
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                double value = 0;
+                if (c == 0)
+                  value = state[info.lambda];
+                else if (info.friction != numbers::invalid_dof_index)
+                  value = state[info.friction + c - 1];
+                add_entry(num, face.node_dofs[l * dim + c], value);
+                add_entry(den, face.node_dofs[l * dim + c], 1.);
+              }
+          }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned)
+        field[i] = den[i] != 0 ? num[i] / den[i] : 0.;
+      field.compress(VectorOperation::insert);
+    }
+
+
+    template <int dim>
+    void
+    Surfaces<dim>::multipliers_from_field(
+      const TrilinosWrappers::MPI::Vector &field,
+      TrilinosWrappers::MPI::Vector       &state_owned) const
+    {
+      auto num = writable_multipliers();
+      auto den = writable_multipliers();
+      for (const auto &face : slave_faces())
+        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+          {
+            const auto &info = nodes().at(face.node_dofs[l * dim]);
+            add_entry(num, info.lambda, field[face.node_dofs[l * dim]]);
+            add_entry(den, info.lambda, 1.);
+            if (info.friction != numbers::invalid_dof_index)
+              for (unsigned int c = 1; c < dim; ++c)
+                {
+                  add_entry(num,
+                            info.friction + c - 1,
+                            field[face.node_dofs[l * dim + c]]);
+                  add_entry(den, info.friction + c - 1, 1.);
+                }
+          }
+      num.compress(VectorOperation::add);
+      den.compress(VectorOperation::add);
+      for (const auto i : owned_multipliers())
+        state_owned[i] = den[i] != 0 ? num[i] / den[i] : 0.;
+      state_owned.compress(VectorOperation::insert);
     }
 
 

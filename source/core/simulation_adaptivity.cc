@@ -89,7 +89,7 @@ namespace Signorini
       parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
         triangulation, indicator, a.refinement_fraction, a.coarsening_fraction);
       if (a.refine_contact_zone && contact->active())
-        for (const auto &cell : contact->contact_zone_cells())
+        for (const auto &cell : contact->contact_output().contact_zone_cells())
           {
             cell->clear_coarsen_flag();
             cell->set_refine_flag();
@@ -121,7 +121,7 @@ namespace Signorini
             u[i] = (*source)[i];
           u.compress(VectorOperation::insert);
           if (contact->active())
-            contact->multipliers_to_field(*source, m);
+            contact->contact_surfaces().multipliers_to_field(*source, m);
           for (const auto *v : {&u, &m})
             {
               old_vectors.emplace_back(locally_owned,
@@ -163,7 +163,7 @@ namespace Signorini
                                             locally_relevant,
                                             mpi_communicator);
             m = new_vectors[2 * k + 1];
-            contact->multipliers_from_field(m, s);
+            contact->contact_surfaces().multipliers_from_field(m, s);
           }
         make_constraints(k == 0 ? time : step_start_time);
         constraints_values.distribute(s);

@@ -225,7 +225,7 @@ namespace Signorini
         std::ostringstream name;
         name << parameters.output.directory << "/contact_" << std::setw(4)
              << std::setfill('0') << step << ".csv";
-        check_output(contact->write_csv(name.str()));
+        check_output(contact->contact_output().write_csv(name.str()));
       }
     // The step's line in statistics.csv last: a step listed there has
     // all its files on disk.

@@ -91,7 +91,7 @@ namespace Signorini
       if (data.contact)
         {
           scalar_dofs.distribute_dofs(fe.base_element(0));
-          fields = data.contact->nodal_fields(scalar_dofs);
+          fields = data.contact->contact_output().nodal_fields(scalar_dofs);
           for (const auto &[name, field] : fields)
             data_out.add_data_vector(scalar_dofs, field, name);
         }

@@ -25,6 +25,7 @@
 #include <signorini/contact/contact_statistics.h>
 #include <signorini/contact/node_statuses.h>
 #include <signorini/contact/obstacles/interface.h>
+#include <signorini/contact/output.h>
 #include <signorini/contact/pairing.h>
 #include <signorini/contact/projection.h>
 #include <signorini/contact/surface_data.h>
@@ -65,7 +66,8 @@
  *   assembly.cc             the point loop: point state and law response
  *   local_rows.cc           local residual and Jacobian of a point (point
  *                           path, re-projection, node friction rows)
- *   output.cc               summaries, point records, CSV, fields, transfer
+ *   output.cc               class Output: summaries, point records, CSV,
+ *                           fields, contact-zone cells
  * and its data in surface_data.h (faces, nodes) and contact_point.h.
  */
 namespace Signorini
@@ -286,52 +288,33 @@ namespace Signorini
       double
       roundoff_scale() const;
 
-      /** Per-pair results of the last evaluation, summed over ranks. */
-      struct PairSummary
+      /** Per-pair results and point records (output.h). */
+      using PairSummary = typename Output<dim>::PairSummary;
+      using PointRecord = typename Output<dim>::PointRecord;
+
+      /** The summaries, records, CSV, nodal fields and contact-zone cells
+       * of the last evaluation (output.h). */
+      const Output<dim> &
+      contact_output() const
       {
-        // Contact force the slave exerts on the master [N] (the force on
-        // the slave is its opposite).
-        Tensor<1, dim> force;
-        double         p_max = 0;  // largest p = -lambda at a point [Pa]
-        // Sums of w |f . n| and w |P f| over the points, each in its own
-        // contact frame [N].
-        double normal_force_local = 0, tangential_force_local = 0;
-        unsigned int   n_contact = 0, n_stick = 0, n_slip = 0, n_points = 0;
-        // Points that found the master, and their largest gap (g > 0:
-        // interpenetration; -infinity when none is paired) [m].
-        unsigned int n_paired = 0;
-        double       max_gap  = -std::numeric_limits<double>::infinity();
-        double       face_size = 0;    // mean slave face size [m]
-        bool           rigid = false;          // master is a rigid obstacle
-        Tensor<1, dim> obstacle_displacement;  // its prescribed motion [m]
-      };
+        return output;
+      }
+
+      /** Per-pair results of the last evaluation, summed over ranks
+       * (Output::summary()). */
       std::vector<PairSummary>
-      summary() const;
+      summary() const
+      {
+        return output.summary();
+      }
 
       /** Values at the contact points, gathered on every rank, sorted by
-       * (pair, reference coordinates). */
-      struct PointRecord
-      {
-        unsigned int       pair;
-        Point<dim>         x;        // reference position
-        double             weight;   // quadrature weight x reference Jacobian
-        double             p;        // -lambda
-        Tensor<1, dim - 1> traction; // mu lambda Lambda (tangent coordinates)
-        double             gap;
-        Tensor<1, dim - 1> slip;     // v in tangent coordinates
-        PointStatus        status;
-        bool               paired;
-
-        // Utilities::MPI::all_gather() sends records through this.
-        template <class Archive>
-        void
-        serialize(Archive &archive, const unsigned int)
-        {
-          archive &pair &x &weight &p &traction &gap &slip &status &paired;
-        }
-      };
+       * (pair, reference coordinates) (Output::gather_points()). */
       std::vector<PointRecord>
-      gather_points() const;
+      gather_points() const
+      {
+        return output.gather_points();
+      }
 
       /**
        * Two facts of a converged contact state that the residual does not
@@ -373,45 +356,6 @@ namespace Signorini
       };
       std::vector<LawCheck>
       law_checks(const TrilinosWrappers::MPI::Vector &state) const;
-
-      /** Writes the per-step slave-surface CSV (collective; rank 0 writes,
-       * under a temporary name renamed into place). Returns "" or why the
-       * write failed (rank 0). */
-      std::string
-      write_csv(const std::string &filename) const;
-
-      /**
-       * Nodal fields on the displacement mesh for the VTU (zero away from
-       * the slave surface): p, gap, status (0 free, 1 stick, 2 slip),
-       * tangential traction and slip (dim-1 each), as weighted averages of
-       * the point values. Returns (name, vector on @p scalar_dofs) pairs.
-       */
-      std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>>
-      nodal_fields(const DoFHandler<dim> &scalar_dofs) const;
-
-      /**
-       * The multipliers of @p state as a field on the displacement DoFs,
-       * for solution transfer across refinement: at a slave node,
-       * component 0 holds lambda and components 1..dim-1 hold Lambda; zero
-       * elsewhere. Writes the owned entries of @p field (displacement
-       * layout, no ghosts).
-       */
-      void
-      multipliers_to_field(const TrilinosWrappers::MPI::Vector &state,
-                           TrilinosWrappers::MPI::Vector &field) const;
-
-      /** The inverse of multipliers_to_field(): the owned multipliers of
-       * @p state_owned from the ghosted @p field (after setup() on the new
-       * mesh). */
-      void
-      multipliers_from_field(const TrilinosWrappers::MPI::Vector &field,
-                             TrilinosWrappers::MPI::Vector &state_owned) const;
-
-      /** Locally owned cells with a face in the active contact zone: slave
-       * faces with a point in contact at the last evaluation, and master
-       * faces such a point is paired with (adaptive refinement). */
-      std::vector<typename DoFHandler<dim>::active_cell_iterator>
-      contact_zone_cells() const;
 
 
     private:
@@ -510,10 +454,11 @@ namespace Signorini
       Surfaces<dim>               surfaces;
       // The contact points and their masters (pairing.h).
       Pairing<dim> pairing;
-
       Coefficients        coefficients; // rho_n, rho_t, law parameters per pair
       // Statuses per multiplier node (node_statuses.h).
       NodeStatuses<dim> node_statuses;
+      // What the points hold, for the user (output.h).
+      Output<dim> output;
       // Newton on the geometry, per pair: frictionless rigid obstacles.
       std::vector<bool> newton_geometry_pair;
       bool              pairing_exact = false; // see pairing_is_exact()

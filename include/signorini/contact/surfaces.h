@@ -216,6 +216,24 @@ namespace Signorini
                    std::vector<Point<dim>>             &x,
                    Point<dim>                          &inside) const;
 
+      /**
+       * The multipliers of @p state as a field on the displacement DoFs,
+       * for solution transfer across refinement: at a slave node,
+       * component 0 holds lambda and components 1..dim-1 hold Lambda; zero
+       * elsewhere. Writes the owned entries of @p field (displacement
+       * layout, no ghosts).
+       */
+      void
+      multipliers_to_field(const TrilinosWrappers::MPI::Vector &state,
+                           TrilinosWrappers::MPI::Vector       &field) const;
+
+      /** The inverse of multipliers_to_field(): the owned multipliers of
+       * @p state_owned from the ghosted @p field (after setup() on the new
+       * mesh). */
+      void
+      multipliers_from_field(const TrilinosWrappers::MPI::Vector &field,
+                             TrilinosWrappers::MPI::Vector &state_owned) const;
+
     private:
       // What setup() collects from this rank's boundary (surfaces.cc).
       struct Scan;
