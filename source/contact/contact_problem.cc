@@ -1,6 +1,7 @@
-// The contact problem's construction, coefficients, point data and DoF
-// couplings (the other members: surfaces.cc, pairing.cc, statuses.cc,
-// active_set_history.cc, assembly.cc, output.cc).
+// The contact problem's construction, set-up, coefficients, DoF couplings,
+// initial multipliers and snapshots (its parts: surfaces.cc, pairing.cc,
+// node_statuses.cc, active_set_history.cc, output.cc; its point loop:
+// assembly.cc, local_rows.cc).
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>

@@ -54,8 +54,9 @@
  * on this scaling.
  *
  * The members are defined by concern in source/contact/:
- *   contact_problem.cc      construction, set-up, point data, couplings,
- *                           snapshots (coefficients: class Coefficients)
+ *   contact_problem.cc      construction, set-up, couplings, initial
+ *                           multipliers, snapshots (coefficients: class
+ *                           Coefficients)
  *   surfaces.cc             class Surfaces: faces, multiplier numbering,
  *                           exclusions, constraint lines, positions X + u
  *   pairing.cc              class Pairing: the contact points, search,
