@@ -1,49 +1,20 @@
-// Adaptive refinement between load steps and the transfer of the state.
+// Adaptive refinement within and between load steps and the transfer of
+// the state to the new mesh.
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/distributed/solution_transfer.h>
-#include <deal.II/dofs/dof_renumbering.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/base/bounding_box.h>
-#include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q1.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/lac/trilinos_sparsity_pattern.h>
-#include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/error_estimator.h>
-#include <deal.II/numerics/vector_tools.h>
 
-#include <signorini/core/input_checks.h>
+#include <signorini/core/errors.h>
 #include <signorini/core/simulation.h>
-
+#include <signorini/geometry/mesh_checks.h>
 
 #include <algorithm>
-#include <signorini/geometry/mesh_checks.h>
-#include <signorini/geometry/scene.h>
-#include <signorini/material/projected_volumetric_strain.h>
-#include <signorini/postprocess/format.h>
-#include <signorini/postprocess/stress_postprocessor.h>
-#include <signorini/solver/roundoff.h>
-
 #include <cmath>
-#include <chrono>
-#include <filesystem>
-#include <unistd.h>
-#include <fstream>
-#include <iomanip>
-#include <functional>
-#include <limits>
-#include <set>
-#include <sstream>
 
 namespace Signorini
 {
-  using Postprocess::format;
-
-
   // Adaptive refinement: the Kelly indicator of the displacement, weighted
   // to the energy norm of each cell's material, marks a fixed fraction of
   // the cells; the active contact zone is always refined. The converged
@@ -58,26 +29,26 @@ namespace Signorini
     if (maximum_level == 0)
       maximum_level = a.maximum_level > 0 ?
                         a.maximum_level :
-                        triangulation.n_global_levels() - 1 + a.cycles;
-    update_solution();
+                        system.triangulation.n_global_levels() - 1 + a.cycles;
+    system.update_solution();
     // Vectors in the displacement layout: u and the multiplier field, now
     // and at the step start.
     std::vector<TrilinosWrappers::MPI::Vector> old_vectors;
-    unsigned int n_refine = 0, n_coarsen = 0;
+    unsigned int                               n_refine = 0, n_coarsen = 0;
     parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector>
-      transfer(dof_handler);
+      transfer(system.dof_handler);
     {
       TimerOutput::Scope t(timer, "adaptation");
-      Vector<float>      indicator(triangulation.n_active_cells());
-      KellyErrorEstimator<dim>::estimate(mapping,
-                                         dof_handler,
-                                         QGauss<dim - 1>(fe.degree + 1),
+      Vector<float>      indicator(system.triangulation.n_active_cells());
+      KellyErrorEstimator<dim>::estimate(system.mapping,
+                                         system.dof_handler,
+                                         QGauss<dim - 1>(system.fe.degree + 1),
                                          {},
-                                         solution,
+                                         system.solution,
                                          indicator);
       // Energy norm: sqrt(E) of the cell's material (bodies of different
       // stiffness), and sqrt(r) in axisymmetry (the 2 pi r weight).
-      for (const auto &cell : triangulation.active_cell_iterators())
+      for (const auto &cell : system.triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             double w =
@@ -87,14 +58,17 @@ namespace Signorini
             indicator[cell->active_cell_index()] *= std::sqrt(w);
           }
       parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-        triangulation, indicator, a.refinement_fraction, a.coarsening_fraction);
-      if (a.refine_contact_zone && contact->active())
-        for (const auto &cell : contact->contact_output().contact_zone_cells())
+        system.triangulation,
+        indicator,
+        a.refinement_fraction,
+        a.coarsening_fraction);
+      if (a.refine_contact_zone && contact.active())
+        for (const auto &cell : contact.contact_output().contact_zone_cells())
           {
             cell->clear_coarsen_flag();
             cell->set_refine_flag();
           }
-      for (const auto &cell : triangulation.active_cell_iterators())
+      for (const auto &cell : system.triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             if (cell->refine_flag_set() &&
@@ -113,19 +87,21 @@ namespace Signorini
           return false;
         }
 
-      for (const auto *source : {&state, &state_step_start})
+      for (const auto *source : {&system.state, &system.state_step_start})
         {
-          TrilinosWrappers::MPI::Vector u(locally_owned, mpi_communicator);
-          TrilinosWrappers::MPI::Vector m(locally_owned, mpi_communicator);
-          for (const auto i : locally_owned)
+          TrilinosWrappers::MPI::Vector u(system.locally_owned,
+                                          mpi_communicator);
+          TrilinosWrappers::MPI::Vector m(system.locally_owned,
+                                          mpi_communicator);
+          for (const auto i : system.locally_owned)
             u[i] = (*source)[i];
           u.compress(VectorOperation::insert);
-          if (contact->active())
-            contact->contact_surfaces().multipliers_to_field(*source, m);
+          if (contact.active())
+            contact.contact_surfaces().multipliers_to_field(*source, m);
           for (const auto *v : {&u, &m})
             {
-              old_vectors.emplace_back(locally_owned,
-                                       locally_relevant,
+              old_vectors.emplace_back(system.locally_owned,
+                                       system.locally_relevant,
                                        mpi_communicator);
               old_vectors.back() = *v;
             }
@@ -133,50 +109,52 @@ namespace Signorini
       std::vector<const TrilinosWrappers::MPI::Vector *> pointers;
       for (const auto &v : old_vectors)
         pointers.push_back(&v);
-      triangulation.prepare_coarsening_and_refinement();
+      system.triangulation.prepare_coarsening_and_refinement();
       check_adapted_size();
       transfer.prepare_for_coarsening_and_refinement(pointers);
-      triangulation.execute_coarsening_and_refinement();
+      system.triangulation.execute_coarsening_and_refinement();
     }
     setup_system();
-    TimerOutput::Scope t(timer, "adaptation");
+    TimerOutput::Scope                         t(timer, "adaptation");
     std::vector<TrilinosWrappers::MPI::Vector> new_vectors(
       old_vectors.size(),
-      TrilinosWrappers::MPI::Vector(locally_owned, mpi_communicator));
+      TrilinosWrappers::MPI::Vector(system.locally_owned, mpi_communicator));
     std::vector<TrilinosWrappers::MPI::Vector *> pointers;
     for (auto &v : new_vectors)
       pointers.push_back(&v);
     transfer.interpolate(pointers);
     for (auto &v : new_vectors)
-      constraints_hanging.distribute(v);
+      system.constraints_hanging.distribute(v);
 
     // Back into the system layout, with the constraint values of each time.
     for (unsigned int k = 0; k < 2; ++k)
       {
-        TrilinosWrappers::MPI::Vector s(owned_system, mpi_communicator);
-        for (const auto i : locally_owned)
+        TrilinosWrappers::MPI::Vector s(system.owned_system, mpi_communicator);
+        for (const auto i : system.locally_owned)
           s[i] = new_vectors[2 * k][i];
         s.compress(VectorOperation::insert);
-        if (contact->active())
+        if (contact.active())
           {
-            TrilinosWrappers::MPI::Vector m(locally_owned,
-                                            locally_relevant,
+            TrilinosWrappers::MPI::Vector m(system.locally_owned,
+                                            system.locally_relevant,
                                             mpi_communicator);
             m = new_vectors[2 * k + 1];
-            contact->contact_surfaces().multipliers_from_field(m, s);
+            contact.contact_surfaces().multipliers_from_field(m, s);
           }
-        make_constraints(k == 0 ? time : step_start_time);
-        constraints_values.distribute(s);
-        (k == 0 ? state : state_step_start) = s;
+        system.make_constraints(k == 0 ? time : step_start_time,
+                                boundary_conditions,
+                                contact);
+        system.constraints_values.distribute(s);
+        (k == 0 ? system.state : system.state_step_start) = s;
       }
-    update_solution();
+    system.update_solution();
     pcout << "  adaptive refinement: " << n_refine << " cells refined, "
           << n_coarsen << " coarsened -> "
-          << triangulation.n_global_active_cells() << " cells, "
-          << dof_handler.n_dofs() << " displacement DoFs";
-    if (contact->active())
-      pcout << ", " << contact->contact_surfaces().n_lambda() << " lambda, "
-            << contact->contact_surfaces().n_friction() << " Lambda";
+          << system.triangulation.n_global_active_cells() << " cells, "
+          << system.dof_handler.n_dofs() << " displacement DoFs";
+    if (contact.active())
+      pcout << ", " << contact.contact_surfaces().n_lambda() << " lambda, "
+            << contact.contact_surfaces().n_friction() << " Lambda";
     pcout << std::endl;
     return true;
   }
@@ -188,7 +166,8 @@ namespace Signorini
   void
   Simulation<dim>::check_adapted_size() const
   {
-    const double n_cells = Geometry::cells_after_refinement(triangulation);
+    const double n_cells =
+      Geometry::cells_after_refinement(system.triangulation);
     if (n_cells > parameters.geometry.maximum_cells)
       throw RunError(
         "adaptive refinement: the next cycle would make " +

@@ -1,5 +1,5 @@
 // The run along the load path: set-up report, load steps with step cuts
-// (Solver::LoadStepper, with this Simulation as its problem), adaptive
+// (Solver::LoadStepper, with the LoadStep as its problem), adaptive
 // cycles within and between steps, the end of the run.
 #include <deal.II/base/utilities.h>
 
@@ -22,13 +22,12 @@ namespace Signorini
     make_mesh();
     setup_system();
     print_setup();
-    prepare_output();
+    results.prepare_output();
     const auto &times = parameters.load_stepping.step_times;
-    last_converged    = state;
-    const Solver::LoadStepper stepper(parameters.load_stepping.max_cuts,
-                                      pcout);
-    double     t_done = 0;
-    const auto start  = std::chrono::steady_clock::now();
+    load_step.mark_converged(false);
+    const Solver::LoadStepper stepper(parameters.load_stepping.max_cuts, pcout);
+    double                    t_done = 0;
+    const auto                start  = std::chrono::steady_clock::now();
     for (unsigned int step = 1; step <= times.size(); ++step)
       {
         print_step_header(step, t_done, start);
@@ -36,34 +35,6 @@ namespace Signorini
       }
     report.print_run_summary(times.size(), 0);
     finish_run();
-  }
-
-
-  template <int dim>
-  void
-  Simulation<dim>::print_setup()
-  {
-    pcout << "Signorini: " << dim << "D, Q" << fe.degree << ", "
-          << triangulation.n_global_active_cells() << " cells, "
-          << dof_handler.n_dofs() << " displacement DoFs, "
-          << parameters.geometry.bodies.size() << " body(ies)" << std::endl;
-    if (parameters.projected_volumetric_strain)
-      pcout << "Volumetric strain projected onto Q" << fe.degree - 1
-            << " in each cell (B-bar)" << std::endl;
-    else
-      for (const auto &m : parameters.materials)
-        if (m.poissons_ratio >= 0.45)
-          pcout << "Note: material " << m.material_id
-                << " has Poisson's ratio " << m.poissons_ratio
-                << ": pure-displacement elements lock as nu -> 0.5 (contact "
-                   "pressures too high); set 'Finite element/Volumetric "
-                   "strain = projected'"
-                << std::endl;
-    if (contact->active())
-      pcout << "DoFs per block: u " << dof_handler.n_dofs() << ", lambda "
-            << contact->contact_surfaces().n_lambda() << ", Lambda "
-            << contact->contact_surfaces().n_friction() << " (total "
-            << contact->contact_surfaces().n_system() << ")" << std::endl;
   }
 
 
@@ -75,8 +46,8 @@ namespace Signorini
   template <int dim>
   void
   Simulation<dim>::print_step_header(
-    const unsigned int                                 step,
-    const double                                       t_done,
+    const unsigned int                           step,
+    const double                                 t_done,
     const std::chrono::steady_clock::time_point &start) const
   {
     const auto &times = parameters.load_stepping.step_times;
@@ -86,15 +57,14 @@ namespace Signorini
           << ", t = " << format(times[step - 1], 4);
     if (show_eta && t_done > 0)
       {
-        const double elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                        start)
-            .count();
+        const double elapsed = std::chrono::duration<double>(
+                                 std::chrono::steady_clock::now() - start)
+                                 .count();
         const double left =
           elapsed / t_done * std::max(0., times.back() - t_done);
-        pcout << std::fixed << std::setprecision(1) << "  (elapsed "
-              << elapsed << " s, about " << left << " s left)"
-              << std::defaultfloat << std::setprecision(6);
+        pcout << std::fixed << std::setprecision(1) << "  (elapsed " << elapsed
+              << " s, about " << left << " s left)" << std::defaultfloat
+              << std::setprecision(6);
       }
     pcout << std::endl;
   }
@@ -109,7 +79,7 @@ namespace Signorini
                                  const double               t_done,
                                  const Solver::LoadStepper &stepper)
   {
-    const auto &times = parameters.load_stepping.step_times;
+    const auto &times    = parameters.load_stepping.step_times;
     report.position.step = step;
     report.start_step();
     Solver::StepProgress progress;
@@ -133,8 +103,7 @@ namespace Signorini
                 << " for the next step" << std::endl;
           if (!adapt_mesh(progress.t_done, progress.t_sub_start))
             break;
-          record_increment();
-          last_converged = state;
+          load_step.mark_converged(true);
         }
     return progress.t_done;
   }
@@ -147,7 +116,7 @@ namespace Signorini
   void
   Simulation<dim>::adapt_in_step(const unsigned int         step,
                                  const double               t_step_start,
-                                 Solver::StepProgress &     progress,
+                                 Solver::StepProgress      &progress,
                                  const Solver::LoadStepper &stepper)
   {
     const unsigned int cycles = parameters.adaptivity.cycles;
@@ -157,24 +126,21 @@ namespace Signorini
         if (!adapt_mesh(progress.t_done, progress.t_sub_start))
           break;
         unsigned int iterations = 0;
-        const bool   ok         = solve_load_step(progress.t_done,
-                                          progress.t_sub_start,
-                                          iterations,
-                                          true);
+        const bool   ok         = load_step.solve(progress.t_done,
+                                        progress.t_sub_start,
+                                        iterations,
+                                        true);
         progress.iterations += iterations;
         if (!ok)
           {
             pcout << "  not converged on the refined mesh: again from the "
                      "start of the step"
                   << std::endl;
-            state = state_step_start;
-            update_solution();
+            load_step.restart_from_step_start();
             progress.t_done = progress.t_sub_start;
-            last_converged  = state;
             advance_or_stop(step, t_step_start, progress, stepper);
           }
-        record_increment();
-        last_converged = state;
+        load_step.mark_converged(true);
       }
   }
 
@@ -187,10 +153,10 @@ namespace Signorini
   void
   Simulation<dim>::advance_or_stop(const unsigned int         step,
                                    const double               t_step_start,
-                                   Solver::StepProgress &     progress,
+                                   Solver::StepProgress      &progress,
                                    const Solver::LoadStepper &stepper)
   {
-    if (stepper.advance(*this,
+    if (stepper.advance(load_step,
                         progress,
                         parameters.load_stepping.step_times[step - 1]))
       return;
@@ -204,80 +170,24 @@ namespace Signorini
         write_step_results(step, progress.t_done, progress.iterations);
       }
     report.print_run_summary(step - (partial ? 0 : 1), step);
-    throw RunError("load step " + std::to_string(step) +
-                   " did not converge between t = " +
-                   format(progress.t_done, 4) +
-                   " and t = " + format(progress.t_failed, 4) + " after " +
-                   std::to_string(parameters.load_stepping.max_cuts) +
-                   " step cuts: " + newton_failure +
-                   ". The results of the completed steps" +
-                   (partial ? " and of the last converged sub-step" : "") +
-                   " are in '" + parameters.output.directory + "'. " +
-                   failure_advice());
-  }
-
-
-  template <int dim>
-  bool
-  Simulation<dim>::solve_step(const double  time,
-                              const double  start_time,
-                              unsigned int &iterations)
-  {
-    return solve_load_step(time, start_time, iterations);
+    throw RunError(
+      "load step " + std::to_string(step) + " did not converge between t = " +
+      format(progress.t_done, 4) + " and t = " + format(progress.t_failed, 4) +
+      " after " + std::to_string(parameters.load_stepping.max_cuts) +
+      " step cuts: " + load_step.failure() +
+      ". The results of the completed steps" +
+      (partial ? " and of the last converged sub-step" : "") + " are in '" +
+      parameters.output.directory + "'. " + load_step.failure_advice());
   }
 
 
   template <int dim>
   void
-  Simulation<dim>::accept_step(const double time, const double start_time)
+  Simulation<dim>::write_step_results(const unsigned int step,
+                                      const double       time,
+                                      const unsigned int iterations)
   {
-    record_increment();
-    last_step_size = time - start_time;
-    last_converged = state;
-    none_converged = false;
-    // The quadrature-point history of the materials follows the converged
-    // (sub)steps only.
-    for (auto &[id, material] : materials)
-      material->commit();
-  }
-
-
-  template <int dim>
-  void
-  Simulation<dim>::reject_step()
-  {
-    // The failed iterates go to newton_history.csv now: the retry may be
-    // killed, or the run stop.
-    report.append_newton_history();
-    state = last_converged;
-    update_solution();
-    for (auto &[id, material] : materials)
-      material->roll_back();
-    // Back to the initial state: the retry needs the initial multipliers
-    // again ('Initial status').
-    if (none_converged)
-      first_pairing = true;
-  }
-
-
-  template <int dim>
-  std::string
-  Simulation<dim>::failure() const
-  {
-    return newton_failure;
-  }
-
-
-  // The converged increment of the last (sub)step: the extrapolated
-  // predictor of the next one.
-  template <int dim>
-  void
-  Simulation<dim>::record_increment()
-  {
-    last_increment.reinit(owned_system, mpi_communicator);
-    for (const auto i : owned_system)
-      last_increment[i] = state[i] - state_step_start[i];
-    last_increment.compress(VectorOperation::insert);
+    results.write(step, time, iterations, load_step.force_level());
   }
 
 
@@ -288,15 +198,15 @@ namespace Signorini
   Simulation<dim>::finish_run()
   {
     const bool jacobian_checked =
-      parameters.newton.check_jacobian && contact->active();
+      parameters.newton.check_jacobian && contact.active();
     if (jacobian_checked)
       sout << "Jacobian check: largest relative error of the contact "
               "Jacobian over the run = "
-           << std::scientific << std::setprecision(1) << jacobian_error_max
-           << " (tolerance 1.0e-06): "
-           << (jacobian_error_max < 1e-6 ? "PASS" : "FAIL")
+           << std::scientific << std::setprecision(1)
+           << equilibrium.jacobian_error() << " (tolerance 1.0e-06): "
+           << (equilibrium.jacobian_error() < 1e-6 ? "PASS" : "FAIL")
            << std::defaultfloat << std::endl;
-    if (jacobian_checked && !(jacobian_error_max < 1e-6))
+    if (jacobian_checked && !(equilibrium.jacobian_error() < 1e-6))
       report.count_failed_check();
     if (report.failed_checks() > 0)
       sout << "Reference checks: " << report.failed_checks()
@@ -312,9 +222,8 @@ namespace Signorini
              << Utilities::MPI::max(mb, mpi_communicator)
              << " MB on the largest rank, "
              << Utilities::MPI::sum(mb, mpi_communicator) << " MB over "
-             << Utilities::MPI::n_mpi_processes(mpi_communicator)
-             << " rank(s)" << std::defaultfloat << std::setprecision(6)
-             << std::endl;
+             << Utilities::MPI::n_mpi_processes(mpi_communicator) << " rank(s)"
+             << std::defaultfloat << std::setprecision(6) << std::endl;
       }
   }
 

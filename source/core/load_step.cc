@@ -1,22 +1,59 @@
-// Load steps and the generalised Newton method: the solve of one step, the
-// Newton loop with its convergence rules, line search, failure reports, the
-// Jacobian check.
+// One load step: the predictor, the geometric loop of pairings and Newton
+// solves, what the load stepper needs after a converged or failed
+// (sub)step.
 #include <deal.II/base/utilities.h>
 
-#include <signorini/contact/jacobian_check.h>
-#include <signorini/core/simulation.h>
+#include <signorini/core/load_step.h>
 
 #include <algorithm>
-#include <signorini/postprocess/format.h>
-
 #include <cmath>
 #include <iomanip>
-#include <limits>
-#include <sstream>
 
 namespace Signorini
 {
-  using Postprocess::format;
+  template <int dim>
+  LoadStep<dim>::LoadStep(const Parameters              &parameters,
+                          DiscreteSystem<dim>           &system,
+                          Bulk::Materials<dim>          &materials,
+                          Bulk::BoundaryConditions<dim> &boundary_conditions,
+                          Contact::ContactProblem<dim>  &contact,
+                          Solver::LinearSolver<dim>     &linear_solver,
+                          EquilibriumProblem<dim>       &equilibrium,
+                          Postprocess::RunReport<dim>   &report,
+                          TimerOutput                   &timer,
+                          ConditionalOStream            &pcout)
+      : parameters(parameters)
+      , system(system)
+      , materials(materials)
+      , boundary_conditions(boundary_conditions)
+      , contact(contact)
+      , linear_solver(linear_solver)
+      , equilibrium(equilibrium)
+      , report(report)
+      , timer(timer)
+      , pcout(pcout)
+  {
+  }
+
+
+  template <int dim>
+  void
+  LoadStep<dim>::mark_converged(const bool with_increment)
+  {
+    if (with_increment)
+      record_increment();
+    last_converged = system.state;
+  }
+
+
+  template <int dim>
+  void
+  LoadStep<dim>::restart_from_step_start()
+  {
+    system.state = system.state_step_start;
+    system.update_solution();
+    last_converged = system.state;
+  }
 
 
   // One load step (formulation.md 7): Dirichlet values of the new time on
@@ -24,30 +61,30 @@ namespace Signorini
   // Newton alone without.
   template <int dim>
   bool
-  Simulation<dim>::solve_load_step(const double  time,
-                                   const double  step_start_time,
-                                   unsigned int &iterations,
-                                   const bool    resume)
+  LoadStep<dim>::solve(const double  time,
+                       const double  step_start_time,
+                       unsigned int &iterations,
+                       const bool    resume)
   {
-    start_load_step(time, step_start_time, resume);
+    start(time, step_start_time, resume);
     iterations = 0;
-    if (!contact->active())
+    if (!contact.active())
       return newton(iterations);
 
     const auto &c = parameters.contact;
-    contact->start_geometric_loop();
+    contact.start_geometric_loop();
     for (unsigned int g = 1; g <= c.max_geometric_iterations; ++g)
       {
         report.position.geometric = g;
-        pair_for_step(time, step_start_time);
-        const TrilinosWrappers::MPI::Vector state_at_pairing = state;
-        unsigned int its = 0;
+        pair(time, step_start_time);
+        const TrilinosWrappers::MPI::Vector state_at_pairing = system.state;
+        unsigned int                        its              = 0;
         // A pairing that will change is not worth the last quadratic
         // iterations: hand over at 'Tolerance between pairings' (not in
         // the last allowed geometric iteration, nor when a new pairing
         // cannot change the equations).
         const double handover =
-          g < c.max_geometric_iterations && !contact->pairing_is_exact() ?
+          g < c.max_geometric_iterations && !contact.pairing_is_exact() ?
             parameters.newton.tolerance_between_pairings :
             0.;
         const bool ok = newton(its, handover);
@@ -55,7 +92,7 @@ namespace Signorini
         if (!ok)
           return false;
         // Rigid obstacles projected at every iterate: nothing to re-pair.
-        if (contact->pairing_is_exact())
+        if (contact.pairing_is_exact())
           return true;
         const double ratio = pairing_change(state_at_pairing);
         if (parameters.output.verbosity != Verbosity::quiet)
@@ -67,7 +104,7 @@ namespace Signorini
           return finish_geometric_loop(handover, iterations);
         // Anti-cycling across pairings: points back at their status of two
         // pairings before keep one status for the rest of the step.
-        if (const unsigned int n = contact->end_geometric_iteration(g); n > 0)
+        if (const unsigned int n = contact.end_geometric_iteration(g); n > 0)
           {
             report.counts.cycle_detections += n;
             report.counts.points_frozen += n;
@@ -87,20 +124,20 @@ namespace Signorini
 
   // The loads and Dirichlet values at @p time, and the first iterate: the
   // extrapolated predictor from the step start, or (resume, after mesh
-  // adaptation) the state as it is, with state_step_start kept.
+  // adaptation) the state as it is, with the state at the step start kept.
   template <int dim>
   void
-  Simulation<dim>::start_load_step(const double time,
-                                   const double step_start_time,
-                                   const bool   resume)
+  LoadStep<dim>::start(const double time,
+                       const double step_start_time,
+                       const bool   resume)
   {
     report.position.time      = time;
     report.position.geometric = 0;
-    force_scale       = 0;
-    make_constraints(time);
+    force_scale               = 0;
+    system.make_constraints(time, boundary_conditions, contact);
     boundary_conditions.set_load_time(time);
     if (!resume)
-      state_step_start = state;
+      system.state_step_start = system.state;
     // Extrapolated predictor: the last converged increment, scaled to this
     // step's size; Dirichlet values then override their entries. One
     // insert per entry: an add after an insert would leave the ranks with
@@ -109,14 +146,15 @@ namespace Signorini
       !resume && parameters.load_stepping.extrapolate && last_step_size > 0 ?
         (time - step_start_time) / last_step_size :
         0.;
-    TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
-    for (const auto i : owned_system)
-      owned[i] = factor != 0 ? state[i] + factor * last_increment[i] :
-                               static_cast<double>(state[i]);
+    TrilinosWrappers::MPI::Vector owned(system.owned_system,
+                                        system.mpi_communicator);
+    for (const auto i : system.owned_system)
+      owned[i] = factor != 0 ? system.state[i] + factor * last_increment[i] :
+                               static_cast<double>(system.state[i]);
     owned.compress(VectorOperation::insert);
-    constraints_values.distribute(owned);
-    state = owned;
-    update_solution();
+    system.constraints_values.distribute(owned);
+    system.state = owned;
+    system.update_solution();
   }
 
 
@@ -125,18 +163,17 @@ namespace Signorini
   // pattern of its couplings.
   template <int dim>
   void
-  Simulation<dim>::pair_for_step(const double time,
-                                 const double step_start_time)
+  LoadStep<dim>::pair(const double time, const double step_start_time)
   {
     {
       TimerOutput::Scope t(timer, "pairing");
-      contact->pair(state, time, step_start_time);
-      if (const unsigned int n = contact->deep_points(); n > 0)
+      contact.pair(system.state, time, step_start_time);
+      if (const unsigned int n = contact.deep_points(); n > 0)
         pcout << "    pairing: " << n
               << " slave point(s) deep inside the master body, paired "
                  "from the penetrated side"
               << std::endl;
-      if (const unsigned int n = contact->newly_pinned(); n > 0)
+      if (const unsigned int n = contact.newly_pinned(); n > 0)
         {
           report.counts.cycle_detections += n;
           report.counts.points_frozen += n;
@@ -147,19 +184,20 @@ namespace Signorini
         }
       if (first_pairing)
         {
-          TrilinosWrappers::MPI::Vector owned(owned_system, mpi_communicator);
-          owned = state;
-          contact->set_initial_multipliers(state, owned);
+          TrilinosWrappers::MPI::Vector owned(system.owned_system,
+                                              system.mpi_communicator);
+          owned = system.state;
+          contact.set_initial_multipliers(system.state, owned);
           // Hanging and excluded multipliers follow their constraint lines
           // from the start: Newton updates are distributed with
           // homogeneous lines, so a start off the lines would stay off.
-          constraints_values.distribute(owned);
-          state         = owned;
+          system.constraints_values.distribute(owned);
+          system.state  = owned;
           first_pairing = false;
         }
     }
     TimerOutput::Scope t(timer, "sparsity");
-    make_sparsity();
+    system.make_sparsity(contact, linear_solver);
   }
 
 
@@ -167,18 +205,20 @@ namespace Signorini
   // increment (code_aster's criterion, formulation.md 7.3).
   template <int dim>
   double
-  Simulation<dim>::pairing_change(
+  LoadStep<dim>::pairing_change(
     const TrilinosWrappers::MPI::Vector &state_at_pairing) const
   {
     double change = 0, increment = 0;
-    for (const auto i : locally_owned)
+    for (const auto i : system.locally_owned)
       {
-        change = std::max(change, std::abs(state[i] - state_at_pairing[i]));
+        change =
+          std::max(change, std::abs(system.state[i] - state_at_pairing[i]));
         increment =
-          std::max(increment, std::abs(state[i] - state_step_start[i]));
+          std::max(increment,
+                   std::abs(system.state[i] - system.state_step_start[i]));
       }
-    change    = Utilities::MPI::max(change, mpi_communicator);
-    increment = Utilities::MPI::max(increment, mpi_communicator);
+    change    = Utilities::MPI::max(change, system.mpi_communicator);
+    increment = Utilities::MPI::max(increment, system.mpi_communicator);
     return increment > 0 ? change / increment : 0.;
   }
 
@@ -189,8 +229,8 @@ namespace Signorini
   // residual above it: a further solve would only stir the round-off.
   template <int dim>
   bool
-  Simulation<dim>::finish_geometric_loop(const double  handover,
-                                         unsigned int &iterations)
+  LoadStep<dim>::finish_geometric_loop(const double  handover,
+                                       unsigned int &iterations)
   {
     const bool at_floor =
       handover > 0 && last_newton.exact_at_end &&
@@ -205,21 +245,21 @@ namespace Signorini
         if (!done)
           return false;
       }
-    if (contact_statistics.n_geometric_frozen > 0)
+    if (equilibrium.statistics().n_geometric_frozen > 0)
       pcout << "    geometric loop converged with "
-            << contact_statistics.n_geometric_frozen
+            << equilibrium.statistics().n_geometric_frozen
             << " point(s) frozen by the geometric loop, "
-            << contact_statistics.n_geometric_violated
+            << equilibrium.statistics().n_geometric_violated
             << " of them against the plain contact law" << std::endl;
     return true;
   }
 
 
   // One Newton solve of the current pairing (Solver::NewtonSolver, with
-  // this Simulation as its problem).
+  // the EquilibriumProblem as its problem).
   template <int dim>
   bool
-  Simulation<dim>::newton(unsigned int &iterations, const double tolerance)
+  LoadStep<dim>::newton(unsigned int &iterations, const double tolerance)
   {
     Solver::NewtonSolver::Parameters p;
     p.max_iterations     = parameters.newton.max_iterations;
@@ -228,10 +268,10 @@ namespace Signorini
     // The line search damps the status changes of contact; a linear bulk
     // alone has none.
     p.line_search_steps =
-      contact->active() ? parameters.newton.line_search_steps : 0;
+      contact.active() ? parameters.newton.line_search_steps : 0;
     p.quiet = parameters.output.verbosity == Verbosity::quiet;
     const Solver::NewtonSolver solver(p, pcout, timer);
-    last_newton = solver.solve(*this, force_scale, tolerance);
+    last_newton = solver.solve(equilibrium, force_scale, tolerance);
     iterations  = last_newton.iterations;
     report.counts.line_searches += last_newton.line_searches;
     if (!last_newton.converged)
@@ -245,45 +285,7 @@ namespace Signorini
 
   template <int dim>
   std::string
-  Simulation<dim>::hold_free_motions(const unsigned int iteration)
-  {
-    const auto free = rigid_modes.find(system_matrix, dof_handler.n_dofs());
-    if (free.empty())
-      return "";
-    std::string list;
-    for (const auto &m : free)
-      list += (list.empty() ? "" : "; ") + rigid_modes.describe(m);
-    // Friction can hold the motion once its points have a threshold: at
-    // the first iterate after they close it is zero (formulation.md 3.3),
-    // and while every point slips there is no tangential stiffness. The
-    // motion's share of the update is then set to zero for this solve.
-    const bool friction_may_hold =
-      contact->active() && contact->contact_surfaces().n_friction() > 0 &&
-      contact_statistics.n_contact > 0;
-    if (!friction_may_hold)
-      throw RunError(
-        "load step " + std::to_string(report.position.step) +
-        ", Newton iterate " + std::to_string(iteration) + ": nothing holds " +
-        list +
-        " (no Dirichlet condition constrains it and no closed contact point "
-        "resists it), so the linear system is singular. Support the body "
-        "along that motion (a Dirichlet condition on that component, on one "
-        "node if the body must stay free otherwise: 'Boundary "
-        "conditions/Dirichlet k/Node'), drive it by a prescribed "
-        "displacement, or let it start in contact ('Contact/Initial status "
-        "= closed').");
-    rigid_modes.hold(system_matrix, dof_handler.n_dofs(), free);
-    if (parameters.output.verbosity != Verbosity::quiet)
-      pcout << "    held for this solve (friction without threshold or "
-               "slipping everywhere): "
-            << list << std::endl;
-    return list;
-  }
-
-
-  template <int dim>
-  std::string
-  Simulation<dim>::failure_advice() const
+  LoadStep<dim>::failure_advice() const
   {
     const std::string smaller =
       parameters.load_stepping.explicit_times ?
@@ -312,54 +314,69 @@ namespace Signorini
 
 
   template <int dim>
-  std::array<double, 3>
-  Simulation<dim>::block_residuals() const
+  bool
+  LoadStep<dim>::solve_step(const double  time,
+                            const double  start_time,
+                            unsigned int &iterations)
   {
-    const types::global_dof_index n_u = dof_handler.n_dofs();
-    const types::global_dof_index n_l =
-      contact->active() ? contact->contact_surfaces().n_lambda() : 0;
-    std::array<double, 3> block = {{0, 0, 0}};
-    for (const auto i : owned_system)
-      block[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)] +=
-        newton_rhs[i] * newton_rhs[i];
-    for (auto &b : block)
-      b = std::sqrt(Utilities::MPI::sum(b, mpi_communicator));
-    return block;
+    return solve(time, start_time, iterations);
   }
 
 
-  // Development check (Newton/Check Jacobian, contact/jacobian_check.h) at
-  // the current iterate. The step floors: 1e-6 of the mesh diameter, 1e-3
-  // of the largest modulus, and 1 (with a floor of 1e-6 E, lambda = 0 after
-  // an open solve gave steps of 1e-12 E and central differences of
-  // round-off noise, 6e-5).
   template <int dim>
   void
-  Simulation<dim>::check_jacobian()
+  LoadStep<dim>::accept_step(const double time, const double start_time)
   {
-    double E_max = 0;
-    for (const auto &[id, material] : materials)
-      E_max = std::max(E_max, material->representative_modulus());
-    const auto saved_statistics = contact_statistics;
-    const auto result =
-      Contact::check_jacobian(*contact,
-                              state,
-                              state_step_start,
-                              constraints_update,
-                              system_matrix,
-                              newton_rhs,
-                              contact_force,
-                              dof_handler.n_dofs(),
-                              {{1e-6 * model_size, 1e-3 * E_max, 1.}});
-    contact_statistics = saved_statistics;
-    jacobian_error_max = std::max(jacobian_error_max, result.worst);
-    pcout << "      Jacobian check: " << result.n_checked << " columns, "
-          << result.n_kinked << " at a kink, max relative error "
-          << std::scientific << std::setprecision(1) << result.worst
-          << std::defaultfloat << std::endl;
+    record_increment();
+    last_step_size = time - start_time;
+    last_converged = system.state;
+    none_converged = false;
+    // The quadrature-point history of the materials follows the converged
+    // (sub)steps only.
+    for (auto &[id, material] : materials)
+      material->commit();
   }
 
 
-  template class Simulation<2>;
-  template class Simulation<3>;
+  template <int dim>
+  void
+  LoadStep<dim>::reject_step()
+  {
+    // The failed iterates go to newton_history.csv now: the retry may be
+    // killed, or the run stop.
+    report.append_newton_history();
+    system.state = last_converged;
+    system.update_solution();
+    for (auto &[id, material] : materials)
+      material->roll_back();
+    // Back to the initial state: the retry needs the initial multipliers
+    // again ('Initial status').
+    if (none_converged)
+      first_pairing = true;
+  }
+
+
+  template <int dim>
+  std::string
+  LoadStep<dim>::failure() const
+  {
+    return newton_failure;
+  }
+
+
+  // The converged increment of the last (sub)step: the extrapolated
+  // predictor of the next one.
+  template <int dim>
+  void
+  LoadStep<dim>::record_increment()
+  {
+    last_increment.reinit(system.owned_system, system.mpi_communicator);
+    for (const auto i : system.owned_system)
+      last_increment[i] = system.state[i] - system.state_step_start[i];
+    last_increment.compress(VectorOperation::insert);
+  }
+
+
+  template class LoadStep<2>;
+  template class LoadStep<3>;
 } // namespace Signorini

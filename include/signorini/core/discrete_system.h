@@ -1,0 +1,106 @@
+#ifndef signorini_core_discrete_system_h
+#define signorini_core_discrete_system_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <signorini/bulk/boundary_conditions.h>
+#include <signorini/contact/contact_problem.h>
+#include <signorini/solver/linear_solver.h>
+
+/**
+ * The discrete system of a run (the "DoFs" step of the data path): the
+ * mesh, the finite element space, its DoFs and index sets, the constraints,
+ * the Jacobian and the state vectors. The unknowns are u | lambda | Lambda
+ * in one index space (Contact::ContactProblem), u alone without contact.
+ */
+namespace Signorini
+{
+  using namespace dealii;
+
+  /**
+   * A plain aggregate, shared by reference: Simulation sets it up and
+   * adapts it, EquilibriumProblem assembles and solves on it, LoadStep
+   * moves its state along the load path, Postprocess::Results writes
+   * it. The residual convention is the one of formulation.md section 4:
+   * R = F_int - F_ext, Newton solves K dU = -R, with the Dirichlet values
+   * on the iterate (constraints_values) and homogeneous constraints on the
+   * update (constraints_update).
+   */
+  template <int dim>
+  struct DiscreteSystem
+  {
+    DiscreteSystem(const unsigned int degree, const MPI_Comm mpi_communicator);
+    ~DiscreteSystem();
+
+    /** The bounding-box diagonal of the mesh, model_size: the length
+     * scale of relative tolerances. */
+    void
+    measure_mesh();
+
+    /** DoFs, index sets, constraints at t = 0 and vectors on the current
+     * mesh; with contact also its surfaces and multipliers
+     * (ContactProblem::setup()), which need the displacement constraints
+     * to exclude over-constrained slave nodes. Without contact also the
+     * sparsity pattern (with contact: at each pairing). */
+    void
+    setup(Bulk::BoundaryConditions<dim> &boundary_conditions,
+          Contact::ContactProblem<dim>  &contact,
+          Solver::LinearSolver<dim>     &linear_solver,
+          ConditionalOStream            &pcout);
+
+    /** Hanging nodes, Dirichlet values at @p time and the contact
+     * constraint lines. */
+    void
+    make_constraints(const double                        time,
+                     Bulk::BoundaryConditions<dim>      &boundary_conditions,
+                     const Contact::ContactProblem<dim> &contact);
+
+    /** Bulk couplings plus the contact couplings of the current pairing;
+     * the matrix is sized to it (the linear solver's analysis of the old
+     * pattern is dropped first). */
+    void
+    make_sparsity(const Contact::ContactProblem<dim> &contact,
+                  Solver::LinearSolver<dim>          &linear_solver);
+
+    /** The u part of state -> solution. */
+    void
+    update_solution();
+
+    MPI_Comm                                  mpi_communicator;
+    parallel::distributed::Triangulation<dim> triangulation;
+    FESystem<dim>                             fe;
+    // The geometry of the cells: polynomials of the element's degree
+    // through its support points (isoparametric), so that the nodes of a
+    // Q2 element follow a curved boundary (its manifold).
+    const MappingQ<dim> mapping;
+    DoFHandler<dim>     dof_handler;
+    // Displacement DoFs, and the system's (with the multipliers).
+    IndexSet locally_owned, locally_relevant;
+    IndexSet owned_system, relevant_system;
+
+    AffineConstraints<double> constraints_values;  // hanging + Dirichlet(t)
+    AffineConstraints<double> constraints_update;  // hanging + zero Dirichlet
+    AffineConstraints<double> constraints_hanging; // hanging nodes only
+
+    TrilinosWrappers::SparseMatrix matrix;
+    TrilinosWrappers::MPI::Vector  solution;         // ghosted u of the iterate
+    TrilinosWrappers::MPI::Vector  state;            // ghosted system iterate
+    TrilinosWrappers::MPI::Vector  state_step_start; // ghosted, step start
+    TrilinosWrappers::MPI::Vector  newton_rhs;       // -R on free DoFs
+    // Without constraints, on u DoFs [N].
+    TrilinosWrappers::MPI::Vector internal_force, external_force;
+    TrilinosWrappers::MPI::Vector contact_force;
+
+    double model_size = 0; // bounding-box diagonal of the mesh [m]
+  };
+} // namespace Signorini
+
+#endif

@@ -1,0 +1,140 @@
+#ifndef signorini_core_equilibrium_problem_h
+#define signorini_core_equilibrium_problem_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <signorini/bulk/assembler.h>
+#include <signorini/bulk/boundary_conditions.h>
+#include <signorini/contact/contact_problem.h>
+#include <signorini/core/discrete_system.h>
+#include <signorini/core/parameters.h>
+#include <signorini/postprocess/run_report.h>
+#include <signorini/solver/linear_solver.h>
+#include <signorini/solver/nonlinear_problem.h>
+#include <signorini/solver/rigid_modes.h>
+
+#include <array>
+#include <memory>
+#include <string>
+
+namespace Signorini
+{
+  using namespace dealii;
+
+  /**
+   * The equilibrium of the bodies at one load and one pairing, as the
+   * problem the Newton solver iterates on (Solver::NonlinearProblem): the
+   * residual of the bulk (Bulk::Assembler) and of contact
+   * (Contact::ContactProblem) at the iterate of the DiscreteSystem, its
+   * block norms and round-off scales, the log rows, the Jacobian and the
+   * linearised solve (with the rigid motions nothing holds), and the
+   * saved and restored state of the contact points for trial iterates.
+   */
+  template <int dim>
+  class EquilibriumProblem : public Solver::NonlinearProblem
+  {
+  public:
+    EquilibriumProblem(const Parameters                    &parameters,
+                       DiscreteSystem<dim>                 &system,
+                       const Bulk::Materials<dim>          &materials,
+                       const Bulk::BoundaryConditions<dim> &boundary_conditions,
+                       Bulk::Assembler<dim>                &bulk,
+                       Contact::ContactProblem<dim>        &contact,
+                       Solver::LinearSolver<dim>           &linear_solver,
+                       Postprocess::RunReport<dim>         &report,
+                       TimerOutput                         &timer,
+                       ConditionalOStream                  &pcout);
+
+    /** After each set-up of the system: its rigid motions. */
+    void
+    setup();
+
+    /** Residual (and with @p with_matrix the Jacobian) at the iterate.
+     * A residual-only evaluation is a new Newton iterate for the status
+     * history unless @p trial (line search). */
+    void
+    assemble(const bool with_matrix, const bool trial = false);
+
+    /** Status counts of the last evaluation. */
+    const Contact::ContactStatistics &
+    statistics() const
+    {
+      return contact_statistics;
+    }
+
+    /** The largest relative error of the Jacobian checks so far ('Newton/
+     * Check Jacobian'). */
+    double
+    jacobian_error() const
+    {
+      return jacobian_error_max;
+    }
+
+    // Solver::NonlinearProblem.
+    void
+    start_solve() override;
+    Solver::Evaluation
+    evaluate(const bool trial) override;
+    void
+    record_iterate(const unsigned int        iteration,
+                   const Solver::Evaluation &evaluation,
+                   const double              force_level,
+                   const bool                converged) override;
+    void
+    check_iterate() override;
+    std::string
+    non_finite_cause() const override;
+    void
+    release_contradicted() override;
+    Solver::LinearisedStep
+    solve_linearised(const unsigned int iteration) override;
+    TrilinosWrappers::MPI::Vector
+    iterate() const override;
+    void
+    set_iterate(const TrilinosWrappers::MPI::Vector &owned) override;
+    std::unique_ptr<Solver::NonlinearProblem::Snapshot>
+    save() const override;
+    void
+    restore(const Solver::NonlinearProblem::Snapshot &snapshot) override;
+
+  private:
+    struct IterateSnapshot;
+
+    /** Norms of the u, lambda and Lambda blocks of newton_rhs. */
+    std::array<double, 3>
+    block_residuals() const;
+    /** Before a solve: the rigid motions the assembled Jacobian does not
+     * hold. With closed frictional points (friction that has no threshold
+     * yet, or slips everywhere) they are held by springs for this solve;
+     * otherwise the system is singular and the run stops (RunError).
+     * Returns the motions held ("" if none). */
+    std::string
+    hold_free_motions(const unsigned int iteration);
+    void
+    check_jacobian();
+
+    const Parameters                    &parameters;
+    DiscreteSystem<dim>                 &system;
+    const Bulk::Materials<dim>          &materials;
+    const Bulk::BoundaryConditions<dim> &boundary_conditions;
+    Bulk::Assembler<dim>                &bulk;
+    Contact::ContactProblem<dim>        &contact;
+    Solver::LinearSolver<dim>           &linear_solver;
+    Postprocess::RunReport<dim>         &report;
+    TimerOutput                         &timer;
+    ConditionalOStream                  &pcout;
+
+    // True if every material is linear without history (Newton's exact
+    // step at fixed contact statuses).
+    bool                       materials_linear = true;
+    Solver::RigidModes<dim>    rigid_modes;
+    Contact::ContactStatistics contact_statistics;
+    // || |K| |x| || of the last Jacobian K at the state x it was assembled
+    // at: the round-off scale of the internal force (evaluate()).
+    double matrix_roundoff    = 0;
+    double jacobian_error_max = 0;
+  };
+} // namespace Signorini
+
+#endif

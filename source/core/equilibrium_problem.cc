@@ -1,0 +1,393 @@
+// The equilibrium problem of the Newton solver: the residual at the
+// iterate and what the convergence rules need of it, the log rows, the
+// linearised solve (with the rigid motions nothing holds), the saved
+// state of trial iterates, the Jacobian check.
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <signorini/contact/jacobian_check.h>
+#include <signorini/core/equilibrium_problem.h>
+#include <signorini/core/errors.h>
+#include <signorini/solver/roundoff.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+
+namespace Signorini
+{
+  // The contact points and statistics of an iterate.
+  template <int dim>
+  struct EquilibriumProblem<dim>::IterateSnapshot
+      : public Solver::NonlinearProblem::Snapshot
+  {
+    std::shared_ptr<const typename Contact::ContactProblem<dim>::PointsState>
+                               points;
+    Contact::ContactStatistics statistics;
+  };
+
+
+  template <int dim>
+  EquilibriumProblem<dim>::EquilibriumProblem(
+    const Parameters                    &parameters,
+    DiscreteSystem<dim>                 &system,
+    const Bulk::Materials<dim>          &materials,
+    const Bulk::BoundaryConditions<dim> &boundary_conditions,
+    Bulk::Assembler<dim>                &bulk,
+    Contact::ContactProblem<dim>        &contact,
+    Solver::LinearSolver<dim>           &linear_solver,
+    Postprocess::RunReport<dim>         &report,
+    TimerOutput                         &timer,
+    ConditionalOStream                  &pcout)
+      : parameters(parameters)
+      , system(system)
+      , materials(materials)
+      , boundary_conditions(boundary_conditions)
+      , bulk(bulk)
+      , contact(contact)
+      , linear_solver(linear_solver)
+      , report(report)
+      , timer(timer)
+      , pcout(pcout)
+  {
+    for (const auto &[id, material] : materials)
+      materials_linear &= material->is_linear();
+  }
+
+
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::setup()
+  {
+    rigid_modes.setup(system.mapping,
+                      system.dof_handler,
+                      system.constraints_update,
+                      system.owned_system,
+                      parameters.axisymmetric,
+                      system.mpi_communicator);
+  }
+
+
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::start_solve()
+  {
+    // rho_t follows the pressure level once per Newton solve: changing it
+    // between iterates would change the equations being solved and spoil
+    // the quadratic convergence.
+    if (contact.active())
+      {
+        contact.update_coefficients(system.state);
+        contact.start_newton_solve();
+      }
+  }
+
+
+  template <int dim>
+  Solver::Evaluation
+  EquilibriumProblem<dim>::evaluate(const bool trial)
+  {
+    assemble(false, trial);
+    Solver::Evaluation e;
+    e.block = block_residuals();
+    // A trial (line search) is judged by its residual norm alone.
+    if (trial)
+      return e;
+    // The force level: internal and external forces, not the residual.
+    // Its multiplier rows (scaled by rho_n) hold rho_n times the initial
+    // gaps at a 'closed' start, and its displacement rows rho_n times the
+    // gap of a point that just closed, so a level taken from it (and every
+    // relative tolerance) would depend on the Normal coefficient.
+    e.force = std::max(system.internal_force.l2_norm(),
+                       system.external_force.l2_norm());
+    // Round-off scales: || |K| |x| || of the last Jacobian at the state it
+    // was assembled at (the scale changes little from one iterate to the
+    // next, and at the first iterate of a pairing the matrix is not
+    // assembled yet), and rho_n |x| of the gaps, which are differences of
+    // positions (ContactProblem::roundoff_scale()).
+    e.bulk_roundoff = matrix_roundoff;
+    if (contact.active())
+      {
+        e.contact_roundoff    = contact.roundoff_scale();
+        e.n_changed           = contact_statistics.n_changed;
+        e.frozen_contradicted = contact_statistics.n_violated > 0;
+      }
+    e.linear_at_fixed_statuses =
+      materials_linear &&
+      (!contact.active() || contact.linear_at_fixed_statuses());
+    return e;
+  }
+
+
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::record_iterate(const unsigned int        iteration,
+                                          const Solver::Evaluation &evaluation,
+                                          const double              force_level,
+                                          const bool                converged)
+  {
+    report.log_iterate(iteration,
+                       evaluation.block,
+                       force_level,
+                       contact.active() ? &contact_statistics : nullptr,
+                       contact.active() &&
+                         contact.contact_surfaces().n_friction() > 0,
+                       converged);
+  }
+
+
+  template <int dim>
+  std::string
+  EquilibriumProblem<dim>::non_finite_cause() const
+  {
+    return boundary_conditions.non_finite(report.position.time,
+                                          system.triangulation,
+                                          system.mpi_communicator);
+  }
+
+
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::check_iterate()
+  {
+    if (parameters.newton.check_jacobian && contact.active())
+      check_jacobian();
+  }
+
+
+  // A frozen point (anti-cycling) that the plain law contradicts at the
+  // converged iterate is released.
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::release_contradicted()
+  {
+    unsigned int       refrozen = 0;
+    const unsigned int n        = contact.release_frozen(refrozen);
+    report.counts.points_released += n;
+    report.counts.points_frozen += refrozen;
+    if (parameters.output.verbosity != Verbosity::quiet)
+      {
+        pcout << "    frozen point(s) that the contact law contradicts: " << n
+              << " released";
+        if (refrozen > 0)
+          pcout << ", " << refrozen
+                << " frozen again in the friction status the law asks for";
+        pcout << std::endl;
+      }
+  }
+
+
+  // Release extrapolation (a shrinking contact zone: the points released
+  // early stay open for this solve only), the Jacobian, the rigid motions
+  // it does not hold, the linear solve.
+  template <int dim>
+  Solver::LinearisedStep
+  EquilibriumProblem<dim>::solve_linearised(const unsigned int iteration)
+  {
+    unsigned int n_early = 0;
+    if (contact.active() && iteration >= 1)
+      if (const unsigned int n = contact.extrapolate_releases(); n > 0)
+        {
+          n_early = n;
+          report.add_early_releases(n);
+          if (parameters.output.verbosity != Verbosity::quiet)
+            pcout << "    release extrapolation: " << n
+                  << " point(s) opened for this solve" << std::endl;
+        }
+    assemble(true);
+    if (contact.active())
+      contact.clear_releases();
+    matrix_roundoff = Solver::absolute_product_norm(system.matrix,
+                                                    system.state,
+                                                    system.mpi_communicator);
+    Solver::LinearisedStep step;
+    step.held_motions = hold_free_motions(iteration);
+    TimerOutput::Scope t(timer, "linear solve");
+    step.update.reinit(system.owned_system, system.mpi_communicator);
+    const unsigned int krylov =
+      linear_solver.solve(system.matrix, step.update, system.newton_rhs);
+    report.counts.krylov_iterations += krylov;
+    report.counts.krylov_max = std::max(report.counts.krylov_max, krylov);
+    system.constraints_update.distribute(step.update);
+    step.exact = krylov == 0 && n_early == 0;
+    return step;
+  }
+
+
+  template <int dim>
+  TrilinosWrappers::MPI::Vector
+  EquilibriumProblem<dim>::iterate() const
+  {
+    TrilinosWrappers::MPI::Vector owned(system.owned_system,
+                                        system.mpi_communicator);
+    owned = system.state;
+    return owned;
+  }
+
+
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::set_iterate(
+    const TrilinosWrappers::MPI::Vector &owned)
+  {
+    system.state = owned;
+    system.update_solution();
+  }
+
+
+  template <int dim>
+  std::unique_ptr<Solver::NonlinearProblem::Snapshot>
+  EquilibriumProblem<dim>::save() const
+  {
+    auto snapshot        = std::make_unique<IterateSnapshot>();
+    snapshot->points     = contact.save_points();
+    snapshot->statistics = contact_statistics;
+    return snapshot;
+  }
+
+
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::restore(
+    const Solver::NonlinearProblem::Snapshot &snapshot)
+  {
+    const auto &saved = dynamic_cast<const IterateSnapshot &>(snapshot);
+    contact.restore_points(*saved.points);
+    contact_statistics = saved.statistics;
+  }
+
+
+  // Assembles -R = F_ext - F_int on the free DoFs into newton_rhs and,
+  // without constraints, F_int and F_ext for reactions and the force scale.
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::assemble(const bool with_matrix, const bool trial)
+  {
+    timer.enter_subsection("bulk assembly");
+    if (with_matrix)
+      system.matrix = 0;
+    system.newton_rhs     = 0;
+    system.internal_force = 0;
+    system.external_force = 0;
+
+    bulk.assemble(system.dof_handler,
+                  system.solution,
+                  system.constraints_update,
+                  with_matrix ? &system.matrix : nullptr,
+                  system.newton_rhs,
+                  system.internal_force,
+                  system.external_force);
+    timer.leave_subsection("bulk assembly");
+    system.contact_force = 0;
+    if (contact.active())
+      {
+        TimerOutput::Scope tc(timer, "contact assembly");
+        contact_statistics =
+          contact.assemble(system.state,
+                           system.state_step_start,
+                           system.constraints_update,
+                           with_matrix ? &system.matrix : nullptr,
+                           system.newton_rhs,
+                           system.contact_force,
+                           !with_matrix && !trial);
+      }
+    if (with_matrix)
+      system.matrix.compress(VectorOperation::add);
+    system.newton_rhs.compress(VectorOperation::add);
+    system.internal_force.compress(VectorOperation::add);
+    system.external_force.compress(VectorOperation::add);
+    system.contact_force.compress(VectorOperation::add);
+  }
+
+
+  template <int dim>
+  std::array<double, 3>
+  EquilibriumProblem<dim>::block_residuals() const
+  {
+    const types::global_dof_index n_u = system.dof_handler.n_dofs();
+    const types::global_dof_index n_l =
+      contact.active() ? contact.contact_surfaces().n_lambda() : 0;
+    std::array<double, 3> block = {{0, 0, 0}};
+    for (const auto i : system.owned_system)
+      block[i < n_u ? 0 : (i < n_u + n_l ? 1 : 2)] +=
+        system.newton_rhs[i] * system.newton_rhs[i];
+    for (auto &b : block)
+      b = std::sqrt(Utilities::MPI::sum(b, system.mpi_communicator));
+    return block;
+  }
+
+
+  template <int dim>
+  std::string
+  EquilibriumProblem<dim>::hold_free_motions(const unsigned int iteration)
+  {
+    const auto free =
+      rigid_modes.find(system.matrix, system.dof_handler.n_dofs());
+    if (free.empty())
+      return "";
+    std::string list;
+    for (const auto &m : free)
+      list += (list.empty() ? "" : "; ") + rigid_modes.describe(m);
+    // Friction can hold the motion once its points have a threshold: at
+    // the first iterate after they close it is zero (formulation.md 3.3),
+    // and while every point slips there is no tangential stiffness. The
+    // motion's share of the update is then set to zero for this solve.
+    const bool friction_may_hold =
+      contact.active() && contact.contact_surfaces().n_friction() > 0 &&
+      contact_statistics.n_contact > 0;
+    if (!friction_may_hold)
+      throw RunError(
+        "load step " + std::to_string(report.position.step) +
+        ", Newton iterate " + std::to_string(iteration) + ": nothing holds " +
+        list +
+        " (no Dirichlet condition constrains it and no closed contact point "
+        "resists it), so the linear system is singular. Support the body "
+        "along that motion (a Dirichlet condition on that component, on one "
+        "node if the body must stay free otherwise: 'Boundary "
+        "conditions/Dirichlet k/Node'), drive it by a prescribed "
+        "displacement, or let it start in contact ('Contact/Initial status "
+        "= closed').");
+    rigid_modes.hold(system.matrix, system.dof_handler.n_dofs(), free);
+    if (parameters.output.verbosity != Verbosity::quiet)
+      pcout << "    held for this solve (friction without threshold or "
+               "slipping everywhere): "
+            << list << std::endl;
+    return list;
+  }
+
+
+  // Development check (Newton/Check Jacobian, contact/jacobian_check.h) at
+  // the current iterate. The step floors: 1e-6 of the mesh diameter, 1e-3
+  // of the largest modulus, and 1 (with a floor of 1e-6 E, lambda = 0 after
+  // an open solve gave steps of 1e-12 E and central differences of
+  // round-off noise, 6e-5).
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::check_jacobian()
+  {
+    double E_max = 0;
+    for (const auto &[id, material] : materials)
+      E_max = std::max(E_max, material->representative_modulus());
+    const auto saved_statistics = contact_statistics;
+    const auto result =
+      Contact::check_jacobian(contact,
+                              system.state,
+                              system.state_step_start,
+                              system.constraints_update,
+                              system.matrix,
+                              system.newton_rhs,
+                              system.contact_force,
+                              system.dof_handler.n_dofs(),
+                              {{1e-6 * system.model_size, 1e-3 * E_max, 1.}});
+    contact_statistics = saved_statistics;
+    jacobian_error_max = std::max(jacobian_error_max, result.worst);
+    pcout << "      Jacobian check: " << result.n_checked << " columns, "
+          << result.n_kinked << " at a kink, max relative error "
+          << std::scientific << std::setprecision(1) << result.worst
+          << std::defaultfloat << std::endl;
+  }
+
+
+  template class EquilibriumProblem<2>;
+  template class EquilibriumProblem<3>;
+} // namespace Signorini
