@@ -1,7 +1,7 @@
 // The contact problem's construction, set-up, coefficients, DoF couplings,
 // initial multipliers and snapshots (its parts: surfaces.cc, pairing.cc,
 // node_statuses.cc, active_set_history.cc, output.cc; its point loop:
-// assembly.cc, local_rows.cc).
+// assembler.cc, local_rows.cc).
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -42,10 +42,7 @@ namespace Signorini
       std::vector<std::unique_ptr<Obstacles::Interface<dim>>> &&obstacles_in,
       const MPI_Comm                                            comm)
         : parameters(parameters)
-        , mapping(mapping)
-        , dof_handler(dof_handler)
         , fe(fe)
-        , materials(materials)
         , comm(comm)
         , surfaces(parameters, mapping, fe, dof_handler, materials, comm)
         , pairing(parameters, surfaces, std::move(obstacles_in), comm)
@@ -62,6 +59,15 @@ namespace Signorini
                   surfaces,
                   node_statuses.pairs_by_node(),
                   comm)
+        , assembler(parameters,
+                    fe,
+                    surfaces,
+                    pairing,
+                    coefficients,
+                    node_statuses,
+                    history,
+                    newton_geometry_pair,
+                    comm)
     {
       const auto &contact = parameters.contact;
       for (unsigned int p = 0; p < contact.pairs.size(); ++p)
@@ -180,27 +186,6 @@ namespace Signorini
 
 
     template <int dim>
-    void
-    ContactProblem<dim>::point_dofs(
-      const ContactPoint                         &point,
-      const std::vector<types::global_dof_index> &cell_dofs,
-      std::vector<types::global_dof_index>       &dofs) const
-    {
-      const auto &face = surfaces.slave_faces()[point.face];
-      dofs.clear();
-      for (const auto i : face.u_local)
-        dofs.push_back(cell_dofs[i]);
-      if (point.master_face >= 0)
-        for (const auto d : surfaces.master_faces()[point.master_face].dofs)
-          dofs.push_back(d);
-      dofs.insert(dofs.end(), face.lambda_dofs.begin(), face.lambda_dofs.end());
-      dofs.insert(dofs.end(),
-                  face.friction_dofs.begin(),
-                  face.friction_dofs.end());
-    }
-
-
-    template <int dim>
     std::vector<types::global_dof_index>
     ContactProblem<dim>::coupled_dofs() const
     {
@@ -209,7 +194,7 @@ namespace Signorini
       for (const auto &point : pairing.points())
         {
           surfaces.slave_faces()[point.face].cell->get_dof_indices(cell_dofs);
-          point_dofs(point, cell_dofs, dofs);
+          point_dofs(surfaces, point, cell_dofs, dofs);
           mine.insert(mine.end(), dofs.begin(), dofs.end());
         }
       std::vector<types::global_dof_index> all;
@@ -244,7 +229,7 @@ namespace Signorini
             }
           if (!masters_of_face.insert(point.master_face).second)
             continue;
-          point_dofs(point, cell_dofs, dofs);
+          point_dofs(surfaces, point, cell_dofs, dofs);
           constraints.add_entries_local_to_global(dofs, sparsity, false);
         }
     }

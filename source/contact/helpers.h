@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/contact/assembler.h>
 #include <signorini/contact/contact_problem.h>
 
 #include <algorithm>
@@ -74,7 +75,7 @@ namespace Signorini
      * Lambda. One object serves all points (its arrays are allocated once).
      */
     template <int dim>
-    struct ContactProblem<dim>::PointEvaluation
+    struct Assembler<dim>::PointEvaluation
     {
       // The law of the pair; the point's own (no friction where its
       // multiplier nodes are all excluded from friction); friction on;

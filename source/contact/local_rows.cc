@@ -5,7 +5,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
-#include <signorini/contact/contact_problem.h>
+#include <signorini/contact/assembler.h>
 
 #include "helpers.h"
 
@@ -15,11 +15,10 @@ namespace Signorini
   {
     template <int dim>
     void
-    ContactProblem<dim>::local_residual(
-      const ContactPoint                  &point,
-      const TrilinosWrappers::MPI::Vector &state,
-      PointEvaluation                     &e,
-      Vector<double>                      &F) const
+    Assembler<dim>::local_residual(const ContactPoint                  &point,
+                                   const TrilinosWrappers::MPI::Vector &state,
+                                   PointEvaluation                     &e,
+                                   Vector<double>                      &F) const
     {
       const auto        &face  = surfaces.slave_faces()[point.face];
       const unsigned int p     = face.pair;
@@ -101,9 +100,9 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::local_jacobian(const ContactPoint    &point,
-                                        const PointEvaluation &e,
-                                        FullMatrix<double>    &K) const
+    Assembler<dim>::local_jacobian(const ContactPoint    &point,
+                                   const PointEvaluation &e,
+                                   FullMatrix<double>    &K) const
     {
       const unsigned int p     = surfaces.slave_faces()[point.face].pair;
       const auto        &r     = e.r;
@@ -160,10 +159,9 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::add_node_friction_jacobian(
-      const ContactPoint    &point,
-      const PointEvaluation &e,
-      FullMatrix<double>    &K) const
+    Assembler<dim>::add_node_friction_jacobian(const ContactPoint    &point,
+                                               const PointEvaluation &e,
+                                               FullMatrix<double>    &K) const
     {
       const unsigned int p     = surfaces.slave_faces()[point.face].pair;
       const auto        &law   = e.law;
@@ -244,7 +242,7 @@ namespace Signorini
     }
 
 
-    template class ContactProblem<2>;
-    template class ContactProblem<3>;
+    template class Assembler<2>;
+    template class Assembler<3>;
   } // namespace Contact
 } // namespace Signorini

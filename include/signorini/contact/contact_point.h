@@ -3,7 +3,7 @@
 
 // A contact point of a slave face, in the groups of the data path: fixed
 // slave data (setup), its pairing (pairing.cc), the last law evaluation
-// (assembly.cc; output and checks read it), and its history within the
+// (assembler.cc; output and checks read it), and its history within the
 // current Newton solve and the current step's geometric loop
 // (active_set_history.cc).
 

@@ -19,6 +19,7 @@
 
 #include <signorini/bulk/assembler.h>
 #include <signorini/contact/active_set_history.h>
+#include <signorini/contact/assembler.h>
 #include <signorini/contact/coefficients.h>
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/contact_point.h>
@@ -64,9 +65,10 @@
  *   node_statuses.cc        class NodeStatuses: statuses per node
  *   active_set_history.cc   class ActiveSetHistory: anti-cycling, freezes,
  *                           releases, extrapolation
- *   assembly.cc             the point loop: point state and law response
- *   local_rows.cc           local residual and Jacobian of a point (point
- *                           path, re-projection, node friction rows)
+ *   assembler.cc            class Assembler: the point loop, point state
+ *                           and law response
+ *   local_rows.cc           its local residual and Jacobian of a point
+ *                           (point path, node friction rows)
  *   output.cc               class Output: summaries, point records, CSV,
  *                           fields, contact-zone cells
  * and its data in surface_data.h (faces, nodes) and contact_point.h.
@@ -203,11 +205,20 @@ namespace Signorini
       ContactStatistics
       assemble(const TrilinosWrappers::MPI::Vector &state,
                const TrilinosWrappers::MPI::Vector &step_start,
-               const AffineConstraints<double> &    constraints,
-               TrilinosWrappers::SparseMatrix *     matrix,
-               TrilinosWrappers::MPI::Vector &      rhs,
-               TrilinosWrappers::MPI::Vector &      contact_force,
-               const bool                           new_iterate = false);
+               const AffineConstraints<double>     &constraints,
+               TrilinosWrappers::SparseMatrix      *matrix,
+               TrilinosWrappers::MPI::Vector       &rhs,
+               TrilinosWrappers::MPI::Vector       &contact_force,
+               const bool                           new_iterate = false)
+      {
+        return assembler.assemble(state,
+                                  step_start,
+                                  constraints,
+                                  matrix,
+                                  rhs,
+                                  contact_force,
+                                  new_iterate);
+      }
 
       /** Anti-cycling within a Newton solve and at its convergence
        * (ActiveSetHistory::start_newton_solve(), release_frozen()). */
@@ -391,67 +402,9 @@ namespace Signorini
       add_node_slip_samples(std::vector<TrilinosWrappers::MPI::Vector> &nodal,
                             const SlipScales                           &scales,
                             std::vector<LawCheck> &result) const;
-      /** System indices of the local unknowns of @p point in the order
-       * e | m | lambda | Lambda (slave face displacements, master face
-       * displacements, multipliers) used by assembly and sparsity;
-       * @p cell_dofs are the DoFs of the slave face's cell. */
-      void
-      point_dofs(const ContactPoint &                        point,
-                 const std::vector<types::global_dof_index> &cell_dofs,
-                 std::vector<types::global_dof_index> &      dofs) const;
-
-      // The assembly of one contact point (source/contact/assembly.cc,
-      // local_rows.cc; the data in source/contact/helpers.h).
-      struct PointEvaluation;
-
-      /** Point state and law response of @p point at @p state (from
-       * @p start): kinematics, gap, slip, multipliers, the law (or the
-       * node path's), the node friction force and, on a rigid obstacle
-       * with Newton on the geometry, its derivatives. */
-      void
-      evaluate_point(ContactPoint &                              point,
-                     const std::vector<types::global_dof_index> &cell_dofs,
-                     const TrilinosWrappers::MPI::Vector &       state,
-                     const TrilinosWrappers::MPI::Vector &       start,
-                     PointEvaluation &                           e);
-
-      /** Counts the status of an evaluated point into @p stats, runs its
-       * anti-cycling at a new iterate, and stores its status and output
-       * values (assembly.cc). */
-      void
-      record_point_status(ContactPoint &         point,
-                          const PointEvaluation &e,
-                          const bool             new_iterate,
-                          ContactStatistics &    stats);
-
-      /** Layout of the local unknowns and the local residual rows -R of an
-       * evaluated point (point path; node friction rows per node). */
-      void
-      local_residual(const ContactPoint &                 point,
-                     const TrilinosWrappers::MPI::Vector &state,
-                     PointEvaluation &                    e,
-                     Vector<double> &                     F) const;
-
-      /** The local Jacobian of an evaluated point: the law's derivatives,
-       * then those of the node friction rows. */
-      void
-      local_jacobian(const ContactPoint    &point,
-                     const PointEvaluation &e,
-                     FullMatrix<double>    &K) const;
-
-      /** The derivatives of the friction rows of a node-status pair, the
-       * status of each node fixed. */
-      void
-      add_node_friction_jacobian(const ContactPoint &    point,
-                                 const PointEvaluation &e,
-                                 FullMatrix<double> &   K) const;
-
-      const Parameters &     parameters;
-      const Mapping<dim>    &mapping;
-      const DoFHandler<dim> &dof_handler;
-      const FESystem<dim> &  fe;
-      const Bulk::Materials<dim> &materials;
-      MPI_Comm comm;
+      const Parameters &   parameters;
+      const FESystem<dim> &fe;
+      MPI_Comm             comm;
       Surfaces<dim>               surfaces;
       // The contact points and their masters (pairing.h).
       Pairing<dim> pairing;
@@ -465,6 +418,8 @@ namespace Signorini
       bool              pairing_exact = false; // see pairing_is_exact()
       bool linear_statuses            = false; // see linear_at_fixed_statuses()
       ActiveSetHistory<dim> history;
+      // The point loop of the residual and Jacobian (assembler.h).
+      Assembler<dim> assembler;
     };
   } // namespace Contact
 } // namespace Signorini

@@ -1,10 +1,10 @@
-// Assembly of the contact residual and Jacobian: the point loop, and the
-// point state and law response of each point (its local rows are in
-// local_rows.cc), and the status record of each evaluated point.
+// The contact assembler: the point loop, the point state and law response
+// of each point (its local rows are in local_rows.cc), and the status
+// record of each evaluated point.
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
 
-#include <signorini/contact/contact_problem.h>
+#include <signorini/contact/assembler.h>
 #include <signorini/contact/distributed_vectors.h>
 
 #include "helpers.h"
@@ -17,14 +17,37 @@ namespace Signorini
 
 
     template <int dim>
+    Assembler<dim>::Assembler(const Parameters        &parameters,
+                              const FESystem<dim>     &fe,
+                              const Surfaces<dim>     &surfaces,
+                              Pairing<dim>            &pairing,
+                              const Coefficients      &coefficients,
+                              NodeStatuses<dim>       &node_statuses,
+                              ActiveSetHistory<dim>   &history,
+                              const std::vector<bool> &newton_geometry_pair,
+                              const MPI_Comm           comm)
+        : parameters(parameters)
+        , fe(fe)
+        , surfaces(surfaces)
+        , pairing(pairing)
+        , coefficients(coefficients)
+        , node_statuses(node_statuses)
+        , history(history)
+        , newton_geometry_pair(newton_geometry_pair)
+        , comm(comm)
+    {
+    }
+
+
+    template <int dim>
     ContactStatistics
-    ContactProblem<dim>::assemble(const TrilinosWrappers::MPI::Vector &state,
-                                  const TrilinosWrappers::MPI::Vector &start,
-                                  const AffineConstraints<double> &constraints,
-                                  TrilinosWrappers::SparseMatrix  *matrix,
-                                  TrilinosWrappers::MPI::Vector   &rhs,
-                                  TrilinosWrappers::MPI::Vector &contact_force,
-                                  const bool                     new_iterate)
+    Assembler<dim>::assemble(const TrilinosWrappers::MPI::Vector &state,
+                             const TrilinosWrappers::MPI::Vector &start,
+                             const AffineConstraints<double>     &constraints,
+                             TrilinosWrappers::SparseMatrix      *matrix,
+                             TrilinosWrappers::MPI::Vector       &rhs,
+                             TrilinosWrappers::MPI::Vector       &contact_force,
+                             const bool                           new_iterate)
     {
       ContactStatistics stats;
       // Normal status per node (decided before the point loop: a node's
@@ -66,7 +89,7 @@ namespace Signorini
           record_point_status(point, e, new_iterate, stats);
 
           local_residual(point, state, e, F);
-          point_dofs(point, cell_dofs, dofs);
+          point_dofs(surfaces, point, cell_dofs, dofs);
           AssertDimension(dofs.size(), e.n);
           for (unsigned int a = 0; a < e.n_e + e.n_m; ++a)
             add_entry(contact_force, dofs[a], -F[a]);
@@ -111,7 +134,7 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::evaluate_point(
+    Assembler<dim>::evaluate_point(
       ContactPoint                               &point,
       const std::vector<types::global_dof_index> &cell_dofs,
       const TrilinosWrappers::MPI::Vector        &state,
@@ -245,10 +268,10 @@ namespace Signorini
 
     template <int dim>
     void
-    ContactProblem<dim>::record_point_status(ContactPoint          &point,
-                                             const PointEvaluation &e,
-                                             const bool             new_iterate,
-                                             ContactStatistics     &stats)
+    Assembler<dim>::record_point_status(ContactPoint          &point,
+                                        const PointEvaluation &e,
+                                        const bool             new_iterate,
+                                        ContactStatistics     &stats)
     {
       const auto &r    = e.r;
       const bool  fric = e.fric;
@@ -331,7 +354,7 @@ namespace Signorini
     }
 
 
-    template class ContactProblem<2>;
-    template class ContactProblem<3>;
+    template class Assembler<2>;
+    template class Assembler<3>;
   } // namespace Contact
 } // namespace Signorini
