@@ -40,8 +40,8 @@ main(int argc, char *argv[])
     }
   if (args[0] == "--print-parameters")
     {
-      ParameterHandler   prm;
-      Signorini::Counts  counts;
+      ParameterHandler  prm;
+      Signorini::Counts counts;
       counts.n_neumann = 1; // show one of each numbered subsection
       counts.n_pairs   = 1;
       Signorini::Parameters::declare_parameters(prm, counts);

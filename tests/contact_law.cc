@@ -160,8 +160,8 @@ namespace
   make_state(const Which which)
   {
     PointState<dim> s;
-    s.normal   = generic_normal<dim>();
-    s.tangents = tangent_basis(s.normal);
+    s.normal    = generic_normal<dim>();
+    s.tangents  = tangent_basis(s.normal);
     s.Lambda[0] = 0.3;
     if constexpr (dim == 3)
       s.Lambda[1] = -0.2;
@@ -216,7 +216,7 @@ namespace
     double       max_err  = 0.;
     for (unsigned int j = 0; j < 2 * dim; ++j)
       {
-        const double h = rel_step * std::max(std::abs(x0[j]), 1.);
+        const double h  = rel_step * std::max(std::abs(x0[j]), 1.);
         auto         xp = x0, xm = x0;
         xp[j] += h;
         xm[j] -= h;
@@ -303,7 +303,7 @@ namespace
 
     // Tangent basis: orthonormal, orthogonal to n, right-handed; 2D formula.
     {
-      bool ok = true;
+      bool                        ok      = true;
       std::vector<Tensor<1, dim>> normals = {n};
       for (unsigned int i = 0; i < dim; ++i)
         {
@@ -326,8 +326,9 @@ namespace
           else
             ok = ok && (cross_product_3d(t[0], t[1]) - m).norm() < 1e-14;
         }
-      deallog << dim << "d tangent basis orthonormal, right-handed: "
-              << yes_no(ok) << std::endl;
+      deallog << dim
+              << "d tangent basis orthonormal, right-handed: " << yes_no(ok)
+              << std::endl;
       AssertThrow(ok, ExcInternalError());
     }
 
@@ -348,27 +349,27 @@ namespace
     // force = p n + mu p v/|v| with p = -lambda.
     {
       PointState<dim> s;
-      s.normal   = n;
-      s.tangents = T;
-      s.gap      = 0.;
-      s.lambda   = -1.5;
-      s.slip     = tangent_combination<dim>(T, 0.03, -0.04);
+      s.normal               = n;
+      s.tangents             = T;
+      s.gap                  = 0.;
+      s.lambda               = -1.5;
+      s.slip                 = tangent_combination<dim>(T, 0.03, -0.04);
       const Tensor<1, dim> t = s.slip / s.slip.norm();
       for (unsigned int k = 0; k < dim - 1; ++k)
         s.Lambda[k] = T[k] * t;
-        {
-          const auto           r = evaluate_contact_law(s, p);
-          const Tensor<1, dim> expected_force =
-            -s.lambda * n - p.mu * s.lambda * t;
-          const bool ok = r.status == PointStatus::slip && r.in_contact &&
-                          r.friction_active && r.r_c == 0. &&
-                          r.r_f.norm() < 1e-14 &&
-                          (r.force - expected_force).norm() < 1e-14;
-          deallog << dim << "d converged slip point"
-                  << ": r_c = 0, r_f = 0, force = p (n + mu v/|v|): "
-                  << yes_no(ok) << std::endl;
-          AssertThrow(ok, ExcInternalError());
-        }
+      {
+        const auto           r = evaluate_contact_law(s, p);
+        const Tensor<1, dim> expected_force =
+          -s.lambda * n - p.mu * s.lambda * t;
+        const bool ok = r.status == PointStatus::slip && r.in_contact &&
+                        r.friction_active && r.r_c == 0. &&
+                        r.r_f.norm() < 1e-14 &&
+                        (r.force - expected_force).norm() < 1e-14;
+        deallog << dim << "d converged slip point"
+                << ": r_c = 0, r_f = 0, force = p (n + mu v/|v|): "
+                << yes_no(ok) << std::endl;
+        AssertThrow(ok, ExcInternalError());
+      }
     }
 
     // Stick with v = 0: r_f = 0 exactly, force = p n - mu lambda T Lambda.
@@ -376,11 +377,11 @@ namespace
       PointState<dim> s = make_state<dim>(Which::stick);
       s.slip            = Tensor<1, dim>();
       const auto r      = evaluate_contact_law(s, p);
-      const bool ok =
-        r.status == PointStatus::stick && r.r_f.norm() == 0. &&
-        r.drf_dlambda.norm() == 0.;
-      deallog << dim << "d stick point with v = 0: r_f = 0, K_fc = 0: "
-              << yes_no(ok) << std::endl;
+      const bool ok = r.status == PointStatus::stick && r.r_f.norm() == 0. &&
+                      r.drf_dlambda.norm() == 0.;
+      deallog << dim
+              << "d stick point with v = 0: r_f = 0, K_fc = 0: " << yes_no(ok)
+              << std::endl;
       AssertThrow(ok, ExcInternalError());
     }
 
@@ -401,29 +402,69 @@ namespace
         bool        contact;
       };
       const std::vector<Pick> picks = {
-        {"lambda_aug = 0 (kink) -> free", 0., 0., 0., 0., PointStatus::free,
+        {"lambda_aug = 0 (kink) -> free",
+         0.,
+         0.,
+         0.,
+         0.,
+         PointStatus::free,
          false},
-        {"lambda = -1e-3, g = 0 -> contact", 0., -1e-3, 0.2, 0.,
-         PointStatus::stick, true},
-        {"lambda = 0.5 > 0 but g = 0.02 -> contact", 0.02, 0.5, 0.2, 0.,
-         PointStatus::stick, true},
-        {"g < 0, lambda = -0.5 -> contact", -0.005, -0.5, 0.2, 0.,
-         PointStatus::stick, true},
-        {"g < 0, lambda = -0.1 -> free", -0.005, -0.1, 0.2, 0.,
-         PointStatus::free, false},
-        {"|h| = 1 exactly -> stick", 0.01, -1., 1., 0., PointStatus::stick,
+        {"lambda = -1e-3, g = 0 -> contact",
+         0.,
+         -1e-3,
+         0.2,
+         0.,
+         PointStatus::stick,
          true},
-        {"|h| = 0.5 + 20*0.03 = 1.1 -> slip", 0.01, -1., 0.5, 0.03,
-         PointStatus::slip, true},
-        {"|h| = 0.5 - 20*0.03 -> stick", 0.01, -1., 0.5, -0.03,
-         PointStatus::stick, true}};
+        {"lambda = 0.5 > 0 but g = 0.02 -> contact",
+         0.02,
+         0.5,
+         0.2,
+         0.,
+         PointStatus::stick,
+         true},
+        {"g < 0, lambda = -0.5 -> contact",
+         -0.005,
+         -0.5,
+         0.2,
+         0.,
+         PointStatus::stick,
+         true},
+        {"g < 0, lambda = -0.1 -> free",
+         -0.005,
+         -0.1,
+         0.2,
+         0.,
+         PointStatus::free,
+         false},
+        {"|h| = 1 exactly -> stick",
+         0.01,
+         -1.,
+         1.,
+         0.,
+         PointStatus::stick,
+         true},
+        {"|h| = 0.5 + 20*0.03 = 1.1 -> slip",
+         0.01,
+         -1.,
+         0.5,
+         0.03,
+         PointStatus::slip,
+         true},
+        {"|h| = 0.5 - 20*0.03 -> stick",
+         0.01,
+         -1.,
+         0.5,
+         -0.03,
+         PointStatus::stick,
+         true}};
       for (const auto &pick : picks)
         {
-          s.gap       = pick.gap;
-          s.lambda    = pick.lambda;
-          s.Lambda    = Tensor<1, dim - 1>();
-          s.Lambda[0] = pick.Lambda0;
-          s.slip      = pick.slip0 * s.tangents[0];
+          s.gap        = pick.gap;
+          s.lambda     = pick.lambda;
+          s.Lambda     = Tensor<1, dim - 1>();
+          s.Lambda[0]  = pick.Lambda0;
+          s.slip       = pick.slip0 * s.tangents[0];
           const auto r = evaluate_contact_law(s, p);
           const bool ok =
             r.status == pick.expected && r.in_contact == pick.contact;
@@ -465,16 +506,16 @@ namespace
       q.mu            = 0.;
       for (const Which which : {Which::free, Which::stick, Which::slip})
         {
-          const auto s = make_state<dim>(which);
-          const auto r = evaluate_contact_law(s, q);
+          const auto s  = make_state<dim>(which);
+          const auto r  = evaluate_contact_law(s, q);
           bool       ok = !r.friction_active && r.r_f.norm() == 0. &&
                     r.drf_dlambda.norm() == 0. && r.drf_dLambda.norm() == 0.;
           for (unsigned int k = 0; k < dim - 1; ++k)
             ok = ok && r.dforce_dLambda[k].norm() == 0. &&
                  r.drf_dd[k].norm() == 0.;
           if (r.in_contact)
-            ok = ok && (r.force - (-(s.lambda - p.rho_n * s.gap)) * n).norm() <
-                         1e-13;
+            ok = ok &&
+                 (r.force - (-(s.lambda - p.rho_n * s.gap)) * n).norm() < 1e-13;
           deallog << dim << "d mu = 0, " << to_string(which)
                   << " state: status = " << to_string(r.status)
                   << ", no friction terms: " << yes_no(ok) << std::endl;
@@ -491,7 +532,7 @@ main()
   try
     {
       std::ofstream logfile("output");
-      deallog.attach(logfile, /*print_job_id=*/ false);
+      deallog.attach(logfile, /*print_job_id=*/false);
       deallog.depth_console(0);
 
       check_jacobians<2>();

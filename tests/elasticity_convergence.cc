@@ -18,8 +18,7 @@ namespace
   std::string
   parameter_text(const unsigned int degree, const unsigned int refinements)
   {
-    const std::string f =
-      "2*pi^2*(2*sin(pi*x)*sin(pi*y)-cos(pi*x)*cos(pi*y))";
+    const std::string f = "2*pi^2*(2*sin(pi*x)*sin(pi*y)-cos(pi*x)*cos(pi*y))";
     return "set Dimension = 2\n"
            "subsection Finite element\n set Degree = " +
            std::to_string(degree) +
@@ -62,15 +61,16 @@ main(int argc, char **argv)
         {
           ParameterHandler            prm;
           const Signorini::Parameters parameters =
-            Signorini::read_parameters_from_string(
-              parameter_text(degree, refinements), prm);
+            Signorini::read_parameters_from_string(parameter_text(degree,
+                                                                  refinements),
+                                                   prm);
           Signorini::Simulation<2> simulation(parameters, prm, MPI_COMM_WORLD);
           simulation.run();
           const double error =
             simulation.last_check_error("displacement L2 relative error");
           out << "  h = 1/" << (1u << refinements) << ": L2 error "
-              << std::scientific << std::setprecision(3) << error
-              << std::fixed << std::setprecision(2);
+              << std::scientific << std::setprecision(3) << error << std::fixed
+              << std::setprecision(2);
           if (previous > 0)
             {
               const double rate = std::log2(previous / error);

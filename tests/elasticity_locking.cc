@@ -99,8 +99,8 @@ main(int argc, char **argv)
               const bool   ok   = std::abs(rate - (degree + 1)) < 0.15;
               out << std::fixed << std::setprecision(2) << ", rate " << rate
                   << (ok ? " (ok)" : " (WRONG)");
-              AssertThrow(ok, ExcMessage("B-bar L2 rate " +
-                                         std::to_string(rate)));
+              AssertThrow(ok,
+                          ExcMessage("B-bar L2 rate " + std::to_string(rate)));
             }
           out << "\n";
           previous = error;

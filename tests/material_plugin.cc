@@ -50,8 +50,8 @@ namespace Example
 
     void
     evaluate(const SymmetricTensor<2, 3> &strain,
-             SymmetricTensor<2, 3> &      stress,
-             SymmetricTensor<4, 3> *      tangent) const override
+             SymmetricTensor<2, 3>       &stress,
+             SymmetricTensor<4, 3>       *tangent) const override
     {
       elastic.evaluate(strain, stress, tangent);
       stress *= factor;
@@ -72,7 +72,7 @@ namespace Example
     }
 
   private:
-    double                                 factor = 1;
+    double                                  factor = 1;
     Signorini::Material::LinearElastic<dim> elastic;
   };
 } // namespace Example
@@ -132,7 +132,7 @@ namespace
   }
 
   void
-  run(std::ostream &     out,
+  run(std::ostream      &out,
       const std::string &model,
       const double       factor,
       const double       p)

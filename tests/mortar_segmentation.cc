@@ -33,7 +33,7 @@ namespace
   // xi -> origin + sum_k L_k(xi_k) e_k, L_k affine in xi_k: a flat face.
   template <int dim>
   std::vector<Point<dim>>
-  face_nodes(const FE_Q<dim - 1> &                        fe,
+  face_nodes(const FE_Q<dim - 1>                             &fe,
              const std::function<Point<dim>(Point<dim - 1>)> &map)
   {
     std::vector<Point<dim>> X;
@@ -74,11 +74,11 @@ namespace
         e[1] = 0.7 * v;
         e[2] = cross_product_3d(u, v);
       }
-    const Point<dim> origin = dim == 2 ? Point<dim>(0.1, 0.2) :
-                                        Point<dim>(0.1, 0.2, 0.3);
-    const double     gap    = 0.01;
-    const auto       plane  = [&](const std::array<double, dim - 1> &s,
-                          const double h) {
+    const Point<dim> origin =
+      dim == 2 ? Point<dim>(0.1, 0.2) : Point<dim>(0.1, 0.2, 0.3);
+    const double gap   = 0.01;
+    const auto   plane = [&](const std::array<double, dim - 1> &s,
+                           const double                       h) {
       Point<dim> x = origin + h * e[dim - 1];
       for (unsigned int k = 0; k < dim - 1; ++k)
         x += s[k] * e[k];
@@ -93,7 +93,7 @@ namespace
     });
 
     // Master faces and their s-boxes.
-    std::vector<std::vector<Point<dim>>>              masters;
+    std::vector<std::vector<Point<dim>>>                    masters;
     std::vector<std::array<std::array<double, 2>, dim - 1>> boxes;
     const unsigned int ni = cuts[0].size() - 1;
     const unsigned int nj = dim == 3 ? cuts[1].size() - 1 : 1;
@@ -119,7 +119,7 @@ namespace
         }
     // s of the slave face -> master xi of face m (the inverse of the above).
     const auto master_xi = [&](const unsigned int m, const Point<dim - 1> &s) {
-      const auto &   box = boxes[m];
+      const auto    &box = boxes[m];
       Point<dim - 1> xm;
       if constexpr (dim == 2)
         xm[0] = (box[0][1] - s[0]) / (box[0][1] - box[0][0]);
@@ -135,7 +135,7 @@ namespace
     for (const auto &m : masters)
       candidates.push_back(&m);
     const unsigned int order = exact_segment_order<dim>(degree);
-    const auto cut = segment_slave_face<dim>(slave, candidates, order);
+    const auto         cut = segment_slave_face<dim>(slave, candidates, order);
 
     // Stability: the same faces moved by round-off give the same points.
     // The iterates of different MPI partitions (and of two runs on several
@@ -145,8 +145,8 @@ namespace
     // Clipping along coincident or touching edges decides by round-off
     // whether a vertex stays; the pieces, their fans and so the points must
     // not follow such decisions.
-    bool               stable = true;
-    std::mt19937       random(42);
+    bool                                   stable = true;
+    std::mt19937                           random(42);
     std::uniform_real_distribution<double> noise(-1e-12, 1e-12);
     for (unsigned int trial = 0; trial < 20; ++trial)
       {
@@ -166,7 +166,7 @@ namespace
         auto moved_slave = slave;
         for (auto &x : moved_slave)
           x = move(x);
-        auto moved_masters = masters;
+        auto                                         moved_masters = masters;
         std::vector<const std::vector<Point<dim>> *> moved_candidates;
         for (auto &m : moved_masters)
           {
@@ -209,14 +209,14 @@ namespace
     double                                                  area = 0;
     for (unsigned int q = 0; q < cut.points.size(); ++q)
       {
-        const auto &xi = cut.points[q];
-        const double w = cut.weights[q] * jacobian<dim>(slave, xi);
+        const auto  &xi = cut.points[q];
+        const double w  = cut.weights[q] * jacobian<dim>(slave, xi);
         area += w;
         const int m = cut.master[q];
         if (m < 0)
           continue;
         const Point<dim> x = face_geometry<dim>(slave, xi).x;
-        const auto proj = project_onto_face(x, masters[m], x + e[dim - 1]);
+        const auto proj    = project_onto_face(x, masters[m], x + e[dim - 1]);
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j < n; ++j)
             M[{i, m * n + j}] +=
@@ -226,8 +226,7 @@ namespace
     // Exact: tensor Gauss (exact for degree 2 * degree + 1 per direction)
     // on each overlap box in s; dA = |e_0| (|e_0 x e_1|) ds.
     const QGauss<dim - 1> gauss(degree + 2);
-    const double          dA = dim == 2 ? e[0].norm() :
-                                          1.3 * 0.7; // orthogonal u, v
+    const double dA = dim == 2 ? e[0].norm() : 1.3 * 0.7; // orthogonal u, v
     for (unsigned int m = 0; m < masters.size(); ++m)
       {
         Point<dim - 1> lo, hi;
@@ -268,20 +267,19 @@ namespace
         error = std::max(error, std::abs(v));
     const double area_exact = dim == 2 ? e[0].norm() : 1.3 * 0.7;
     const double area_error = std::abs(area - area_exact) / area_exact;
-    const bool   pass =
-      error <= 1e-12 * scale && area_error <= 1e-12 && stable;
+    const bool   pass = error <= 1e-12 * scale && area_error <= 1e-12 && stable;
     deallog << dim << "D Q" << degree << ": " << masters.size()
-              << " master faces, " << cut.n_pieces << " pieces, "
-              << cut.points.size() << " points (order " << order << ")"
-              << std::endl
-              << "  max |M - M_exact| / max |M_exact| < 1e-12: "
-              << (error <= 1e-12 * scale ? "yes" : "NO") << std::endl
-              << "  slave area " << std::setprecision(10) << area_exact
-              << ", relative error < 1e-12: "
-              << (area_error <= 1e-12 ? "yes" : "NO") << std::endl
-              << "  same points (1e-9) after moves of the nodes by 1e-12 "
-                 "(20 trials): "
-              << (stable ? "yes" : "NO") << std::endl;
+            << " master faces, " << cut.n_pieces << " pieces, "
+            << cut.points.size() << " points (order " << order << ")"
+            << std::endl
+            << "  max |M - M_exact| / max |M_exact| < 1e-12: "
+            << (error <= 1e-12 * scale ? "yes" : "NO") << std::endl
+            << "  slave area " << std::setprecision(10) << area_exact
+            << ", relative error < 1e-12: "
+            << (area_error <= 1e-12 ? "yes" : "NO") << std::endl
+            << "  same points (1e-9) after moves of the nodes by 1e-12 "
+               "(20 trials): "
+            << (stable ? "yes" : "NO") << std::endl;
     std::cerr << dim << "D Q" << degree << ": error " << error / scale
               << ", area error " << area_error << std::endl;
     return pass;

@@ -52,8 +52,7 @@ namespace
   verdict(const std::string &what, const double error, const double tol)
   {
     std::cout << std::setw(58) << std::left << what << " error "
-              << std::scientific << std::setprecision(2) << error
-              << std::endl;
+              << std::scientific << std::setprecision(2) << error << std::endl;
     std::ostringstream t;
     t << std::scientific << std::setprecision(0) << tol;
     deallog << what << " recovered to " << t.str() << ": "
@@ -153,16 +152,18 @@ namespace
         double err = 0.;
         for (unsigned int i = 0; i < fe2.n_dofs_per_cell(); ++i)
           for (unsigned int j = 0; j < fe2.n_dofs_per_cell(); ++j)
-            err = std::max(err,
-                           std::abs(fe2.shape_value(
-                                      i, fe2.get_unit_support_points()[j]) -
-                                    (i == j)));
+            err =
+              std::max(err,
+                       std::abs(
+                         fe2.shape_value(i, fe2.get_unit_support_points()[j]) -
+                         (i == j)));
         for (unsigned int i = 0; i < fe1.n_dofs_per_cell(); ++i)
           for (unsigned int j = 0; j < fe1.n_dofs_per_cell(); ++j)
-            err = std::max(err,
-                           std::abs(fe1.shape_value(
-                                      i, fe1.get_unit_support_points()[j]) -
-                                    (i == j)));
+            err =
+              std::max(err,
+                       std::abs(
+                         fe1.shape_value(i, fe1.get_unit_support_points()[j]) -
+                         (i == j)));
         verdict("Q" + std::to_string(deg) + " N_i(x_j) = delta_ij", err, 1e-14);
       }
   }
@@ -185,8 +186,8 @@ namespace
   {
     deallog << "--- Q1 quad, planar (3D)" << std::endl;
     {
-      const Point<3>     O(0.5, -1., 2.);
-      const Tensor<1, 3> A({2., 0., 0.5}), B({0.3, 1.5, 0.2});
+      const Point<3>              O(0.5, -1., 2.);
+      const Tensor<1, 3>          A({2., 0., 0.5}), B({0.3, 1.5, 0.2});
       const std::vector<Point<3>> X = {O, O + A, O + B, O + A + B};
       Tensor<1, 3>                n = cross_product_3d(A, B);
       n /= n.norm();
@@ -194,7 +195,8 @@ namespace
       n                     = -n;
       const Point<2> xi(0.2, 0.65);
       const Point<3> x = O + 0.2 * A + 0.65 * B;
-      check_recovery<3>("Q1 planar quad, penetrating", X, inside, xi, x, n, 0.4);
+      check_recovery<3>(
+        "Q1 planar quad, penetrating", X, inside, xi, x, n, 0.4);
       check_recovery<3>("Q1 planar quad, separated", X, inside, xi, x, n, -2.);
     }
     deallog << "--- Q1 quad, non-planar bilinear (3D)" << std::endl;
@@ -203,7 +205,7 @@ namespace
                                        Point<3>(1., 0., 0.1),
                                        Point<3>(0., 1., -0.1),
                                        Point<3>(1.2, 1.1, 0.4)};
-      const double   u = 0.62, v = 0.27;
+      const double                u = 0.62, v = 0.27;
       const Point<3> x = (1 - u) * (1 - v) * X[0] + u * (1 - v) * X[1] +
                          (1 - u) * v * X[2] + u * v * X[3];
       const Tensor<1, 3> au = (1 - v) * (X[1] - X[0]) + v * (X[3] - X[2]);
@@ -239,18 +241,69 @@ namespace
       double p[3], inside[3], X[4][3];
     };
     const std::vector<Case> cases = {
-      {{-0.0053125141232540337, -0.0089371531441456396, 0.0011310542261792362}, {-0.0044770831115283089, -0.006568923415029077, -0.0030449196841275507}, {{-0.0053179017037081446, -0.009247680416266623, -0.0011512504930955641}, {-0.0053144266908982836, -0.0054640363016447988, -0.00058440351223739556}, {-0.0016161508053191161, -0.006474931665643671, -0.00044736821822970868}, {-0.0028453121061348991, -0.0048697392678961338, -0.00031911999087181481}}},
-      {{-0.010195188597246481, -0.0076804450320556768, 0.00172286284604132}, {-0.0083769971275751472, -0.0076999643845487263, -0.0036950533119898357}, {{-0.0053179017037081446, -0.009247680416266623, -0.0011512504930955641}, {-0.010448761973999601, -0.0082893227300764889, -0.0018117182098454851}, {-0.007512323522502814, -0.0068496299527523218, -0.001044432749649313}, {-0.01019733758407641, -0.0070013420187472414, -0.0015542002219706701}}},
-      {{-0.01149888901612311, 0.0055335093883042766, 0.0012385150516672316}, {-0.011363003199974865, 0.0034847093248849817, -0.0031507700728437902}, {{-0.011756666097690978, 0.0054179606066703913, -0.0012792711188018939}, {-0.013723667055880044, -3.4782434961657925e-05, -0.001488233250737451}, {-0.010411623699840651, 0.0050440436789185193, -0.00094256793515480727}, {-0.010742185352255787, 0.0021354256519617552, -0.00080468944967951707}}},
-      {{-0.020382582998135265, -0.019601347542549656, 0.008353009174613079}, {-0.014019138539691141, -0.012650128170365125, -0.0058555340351263566}, {{-0.012804740889083654, -0.01542776589978684, -0.0037313809875487805}, {-0.018253244824978428, -0.015836490900133927, -0.0057500760140761081}, {-0.013739028190813355, -0.01272823295504383, -0.0031801120073246501}, {-0.016934083942779805, -0.011589459911015039, -0.0039386949116302162}}},
-      {{0.0046132297534210243, 0.0086307570016603882, 0.00057941343150239857}, {0.0028661082353589702, 0.0079976024085864246, -0.0028480623295054916}, {{0.0019008387409330042, 0.0091558125947728379, -0.00048919423591047288}, {0.0017839083188870911, 0.011931403213074641, -0.0010638820803227631}, {0.0039064741451730334, 0.0078181740811347003, -0.00039757598062024608}, {0.0048545606428237256, 0.008548414654409876, -0.00058794299015134052}}},
-      {{0.0050672137037718655, -0.014766748496273175, 0.0020742711383814564}, {0.0056542159081220166, -0.012711539574291419, -0.0035906476980556738}, {{0.0057357401017600522, -0.015943932133391341, -0.0025072175573063776}, {0.0080010850927026995, -0.015362346369444163, -0.0026404119179978622}, {0.002840076006200135, -0.013726526475929956, -0.0015701532222664812}, {0.0044615534969892102, -0.010380968163783545, -0.00088000000760991078}}},
-      {{0.0064974124360577343, 0.015405495618168846, 0.0024790040394279669}, {0.0050596635754338237, 0.014688079393949217, -0.0054400391565608535}, {{0.0038710599166336436, 0.017016758882470638, -0.0026902892919047272}, {0.0061103172741384937, 0.015785171906885585, -0.0025022262073024965}, {0.0017839292057290647, 0.011931895326522031, -0.0010642186634724662}, {0.0061716423464364565, 0.012619855603987849, -0.0015804781784929717}}},
+      {{-0.0053125141232540337, -0.0089371531441456396, 0.0011310542261792362},
+       {-0.0044770831115283089, -0.006568923415029077, -0.0030449196841275507},
+       {{-0.0053179017037081446, -0.009247680416266623, -0.0011512504930955641},
+        {-0.0053144266908982836,
+         -0.0054640363016447988,
+         -0.00058440351223739556},
+        {-0.0016161508053191161,
+         -0.006474931665643671,
+         -0.00044736821822970868},
+        {-0.0028453121061348991,
+         -0.0048697392678961338,
+         -0.00031911999087181481}}},
+      {{-0.010195188597246481, -0.0076804450320556768, 0.00172286284604132},
+       {-0.0083769971275751472, -0.0076999643845487263, -0.0036950533119898357},
+       {{-0.0053179017037081446, -0.009247680416266623, -0.0011512504930955641},
+        {-0.010448761973999601, -0.0082893227300764889, -0.0018117182098454851},
+        {-0.007512323522502814, -0.0068496299527523218, -0.001044432749649313},
+        {-0.01019733758407641,
+         -0.0070013420187472414,
+         -0.0015542002219706701}}},
+      {{-0.01149888901612311, 0.0055335093883042766, 0.0012385150516672316},
+       {-0.011363003199974865, 0.0034847093248849817, -0.0031507700728437902},
+       {{-0.011756666097690978, 0.0054179606066703913, -0.0012792711188018939},
+        {-0.013723667055880044, -3.4782434961657925e-05, -0.001488233250737451},
+        {-0.010411623699840651, 0.0050440436789185193, -0.00094256793515480727},
+        {-0.010742185352255787,
+         0.0021354256519617552,
+         -0.00080468944967951707}}},
+      {{-0.020382582998135265, -0.019601347542549656, 0.008353009174613079},
+       {-0.014019138539691141, -0.012650128170365125, -0.0058555340351263566},
+       {{-0.012804740889083654, -0.01542776589978684, -0.0037313809875487805},
+        {-0.018253244824978428, -0.015836490900133927, -0.0057500760140761081},
+        {-0.013739028190813355, -0.01272823295504383, -0.0031801120073246501},
+        {-0.016934083942779805,
+         -0.011589459911015039,
+         -0.0039386949116302162}}},
+      {{0.0046132297534210243, 0.0086307570016603882, 0.00057941343150239857},
+       {0.0028661082353589702, 0.0079976024085864246, -0.0028480623295054916},
+       {{0.0019008387409330042, 0.0091558125947728379, -0.00048919423591047288},
+        {0.0017839083188870911, 0.011931403213074641, -0.0010638820803227631},
+        {0.0039064741451730334, 0.0078181740811347003, -0.00039757598062024608},
+        {0.0048545606428237256,
+         0.008548414654409876,
+         -0.00058794299015134052}}},
+      {{0.0050672137037718655, -0.014766748496273175, 0.0020742711383814564},
+       {0.0056542159081220166, -0.012711539574291419, -0.0035906476980556738},
+       {{0.0057357401017600522, -0.015943932133391341, -0.0025072175573063776},
+        {0.0080010850927026995, -0.015362346369444163, -0.0026404119179978622},
+        {0.002840076006200135, -0.013726526475929956, -0.0015701532222664812},
+        {0.0044615534969892102,
+         -0.010380968163783545,
+         -0.00088000000760991078}}},
+      {{0.0064974124360577343, 0.015405495618168846, 0.0024790040394279669},
+       {0.0050596635754338237, 0.014688079393949217, -0.0054400391565608535},
+       {{0.0038710599166336436, 0.017016758882470638, -0.0026902892919047272},
+        {0.0061103172741384937, 0.015785171906885585, -0.0025022262073024965},
+        {0.0017839292057290647, 0.011931895326522031, -0.0010642186634724662},
+        {0.0061716423464364565, 0.012619855603987849, -0.0015804781784929717}}},
     };
-    const auto point = [](const double (&a)[3]) {
+    const auto point = [](const double(&a)[3]) {
       return Point<3>(a[0], a[1], a[2]);
     };
-    double worst = 0;
+    double       worst       = 0;
     unsigned int n_converged = 0;
     for (const auto &c : cases)
       {
@@ -260,8 +313,8 @@ namespace
         const Point<3> p = point(c.p);
         const auto     r = project_onto_face(p, X, point(c.inside));
         n_converged += r.converged;
-        const auto     geometry = face_geometry<3>(X, r.xi);
-        const Tensor<1, 3> d    = geometry.x - p;
+        const auto         geometry = face_geometry<3>(X, r.xi);
+        const Tensor<1, 3> d        = geometry.x - p;
         for (const auto &a : geometry.tangents)
           worst = std::max(worst, std::abs(d * a) / (d.norm() * a.norm()));
         std::cout << "    (" << r.n_iterations << " Newton iterations)\n";
@@ -384,11 +437,11 @@ namespace
 
   template <int dim>
   void
-  check_rigid(const std::string          &name,
+  check_rigid(const std::string                           &name,
               const Signorini::Obstacles::Projection<dim> &r,
-              const Point<dim>           &x_m,
-              const Tensor<1, dim>       &n,
-              const double                g)
+              const Point<dim>                            &x_m,
+              const Tensor<1, dim>                        &n,
+              const double                                 g)
   {
     deallog << name << ": x_m = " << fmt<dim>(r.x_m)
             << ", n = " << fmt<dim>(r.normal) << ", g = " << fmt(r.gap)
@@ -405,7 +458,8 @@ namespace
     deallog << "--- rigid obstacles" << std::endl;
     {
       // obstacle y < 1 (outward normal +y); contact normal -y (into it)
-      Signorini::Obstacles::Plane<2> plane(Point<2>(0., 1.), Tensor<1, 2>({0., 3.}));
+      Signorini::Obstacles::Plane<2> plane(Point<2>(0., 1.),
+                                           Tensor<1, 2>({0., 3.}));
       check_rigid<2>("plane 2D, penetrating",
                      plane.project(Point<2>(0.3, 0.9)),
                      Point<2>(0.3, 1.),
@@ -424,8 +478,8 @@ namespace
                      -0.5);
     }
     {
-      const Tensor<1, 3> nu({1., 2., 2.}); // |nu| = 3
-      Signorini::Obstacles::Plane<3>      plane(Point<3>(1., 0., 0.), nu);
+      const Tensor<1, 3>             nu({1., 2., 2.}); // |nu| = 3
+      Signorini::Obstacles::Plane<3> plane(Point<3>(1., 0., 0.), nu);
       // p = x0 + 0.5 t - 0.3 nu/3 with t orthogonal to nu
       const Tensor<1, 3> t({2., -1., 0.});
       const Point<3>     p = Point<3>(1., 0., 0.) + 0.5 * t - 0.1 * nu;
@@ -450,7 +504,7 @@ namespace
                      -1.5);
     }
     {
-      const Point<3> c(1., 2., 3.);
+      const Point<3>                  c(1., 2., 3.);
       Signorini::Obstacles::Sphere<3> sphere(c, 2.);
       check_rigid<3>("sphere, penetrating",
                      sphere.project(c + Tensor<1, 3>({0., 0., 1.5})),
@@ -464,7 +518,9 @@ namespace
                      -1.);
     }
     {
-      Signorini::Obstacles::Cylinder<3> cyl(Point<3>(0., 0., 1.), Tensor<1, 3>({0., 0., 2.}), 1.);
+      Signorini::Obstacles::Cylinder<3> cyl(Point<3>(0., 0., 1.),
+                                            Tensor<1, 3>({0., 0., 2.}),
+                                            1.);
       check_rigid<3>("cylinder, separated",
                      cyl.project(Point<3>(1.2, 1.6, 7.)),
                      Point<3>(0.6, 0.8, 7.),
@@ -477,7 +533,9 @@ namespace
                      Tensor<1, 3>({0., 1., 0.}),
                      0.75);
       // oblique axis e = (1,1,0)/sqrt(2), p = a + 3 e + 0.5 z
-      Signorini::Obstacles::Cylinder<3>   ob(Point<3>(), Tensor<1, 3>({1., 1., 0.}), 0.8);
+      Signorini::Obstacles::Cylinder<3> ob(Point<3>(),
+                                           Tensor<1, 3>({1., 1., 0.}),
+                                           0.8);
       const Tensor<1, 3> e = Tensor<1, 3>({1., 1., 0.}) / std::sqrt(2.);
       check_rigid<3>("cylinder, oblique axis, penetrating",
                      ob.project(Point<3>() + 3. * e +
@@ -487,7 +545,9 @@ namespace
                      0.3);
     }
     {
-      Signorini::Obstacles::Cylinder<2> disk(Point<2>(0., 0.), Tensor<1, 2>(), 1.);
+      Signorini::Obstacles::Cylinder<2> disk(Point<2>(0., 0.),
+                                             Tensor<1, 2>(),
+                                             1.);
       check_rigid<2>("cylinder 2D (disk), penetrating",
                      disk.project(Point<2>(0., -0.4)),
                      Point<2>(0., -1.),
@@ -503,10 +563,10 @@ namespace
    */
   template <int dim>
   void
-  check_rigid_derivatives(const std::string &            name,
+  check_rigid_derivatives(const std::string                          &name,
                           const Signorini::Obstacles::Interface<dim> &obstacle,
-                          const Point<dim> &             p,
-                          const double                   tol)
+                          const Point<dim>                           &p,
+                          const double                                tol)
   {
     const auto     r = obstacle.project(p);
     const double   h = 1e-6;
@@ -541,24 +601,25 @@ namespace
   test_rigid_derivatives()
   {
     deallog << "--- rigid obstacle derivatives" << std::endl;
-    check_rigid_derivatives<2>("plane 2D",
-                               Signorini::Obstacles::Plane<2>(Point<2>(0., 1.),
-                                                   Tensor<1, 2>({1., 3.})),
-                               Point<2>(0.3, 0.9),
-                               1e-8);
-    check_rigid_derivatives<3>("sphere 3D",
-                               Signorini::Obstacles::Sphere<3>(Point<3>(1., 2., 3.), 2.),
-                               Point<3>(1.5, 2.7, 4.1),
-                               1e-8);
-    check_rigid_derivatives<3>(
-      "cylinder 3D, oblique axis",
-      Signorini::Obstacles::Cylinder<3>(Point<3>(), Tensor<1, 3>({1., 1., 0.}), 0.8),
-      Point<3>(0.4, 1.1, 0.5),
+    check_rigid_derivatives<2>(
+      "plane 2D",
+      Signorini::Obstacles::Plane<2>(Point<2>(0., 1.), Tensor<1, 2>({1., 3.})),
+      Point<2>(0.3, 0.9),
       1e-8);
+    check_rigid_derivatives<3>(
+      "sphere 3D",
+      Signorini::Obstacles::Sphere<3>(Point<3>(1., 2., 3.), 2.),
+      Point<3>(1.5, 2.7, 4.1),
+      1e-8);
+    check_rigid_derivatives<3>("cylinder 3D, oblique axis",
+                               Signorini::Obstacles::Cylinder<3>(
+                                 Point<3>(), Tensor<1, 3>({1., 1., 0.}), 0.8),
+                               Point<3>(0.4, 1.1, 0.5),
+                               1e-8);
     check_rigid_derivatives<2>("cylinder 2D (disk)",
                                Signorini::Obstacles::Cylinder<2>(Point<2>(),
-                                                      Tensor<1, 2>(),
-                                                      1.),
+                                                                 Tensor<1, 2>(),
+                                                                 1.),
                                Point<2>(0.3, -0.7),
                                1e-8);
 
@@ -568,8 +629,7 @@ namespace
     // +x; the point (0.5, 2.3) is 0.5 outside it, its closest point
     // (1, 2.3).
     {
-      Signorini::Obstacles::Plane<2>       plane(Point<2>(),
-                                           Tensor<1, 2>({0., 1.}));
+      Signorini::Obstacles::Plane<2> plane(Point<2>(), Tensor<1, 2>({0., 1.}));
       Signorini::Obstacles::RigidMotion<2> motion;
       motion.rotation    = Tensor<2, 2>({{0., -1.}, {1., 0.}});
       motion.centre      = Point<2>(1., 0.);
@@ -594,9 +654,9 @@ namespace
                                  1e-8);
     }
 
-    const Point<3>       c(1., 2., 3.);
+    const Point<3>                  c(1., 2., 3.);
     Signorini::Obstacles::Sphere<3> sphere(c, 2.);
-    ParameterHandler     prm;
+    ParameterHandler                prm;
     Signorini::Obstacles::LevelSet<3>::declare_parameters(prm);
     prm.parse_input_from_string(
       "subsection Level set\n"
@@ -620,11 +680,10 @@ namespace
         const auto s = sphere.project(p);
         for (const auto *level_set : {&expression, &exact})
           {
-            const auto        r    = level_set->project(p);
-            const std::string name = std::string("level set (") +
-                                     (level_set == &exact ? "exact" :
-                                                            "expression") +
-                                     ") = sphere";
+            const auto        r = level_set->project(p);
+            const std::string name =
+              std::string("level set (") +
+              (level_set == &exact ? "exact" : "expression") + ") = sphere";
             const double tol = level_set == &exact ? 1e-12 : 5e-10;
             verdict(name + ": x_m", (r.x_m - s.x_m).norm(), tol);
             verdict(name + ": normal", (r.normal - s.normal).norm(), tol);

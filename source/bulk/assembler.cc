@@ -14,40 +14,41 @@ namespace Signorini
   {
     template <int dim>
     Assembler<dim>::Assembler(
-      const Parameters &                                       parameters,
-      const Mapping<dim> &                                     mapping,
-      const FESystem<dim> &                                    fe,
-      const Materials<dim> &                                   materials,
+      const Parameters                                        &parameters,
+      const Mapping<dim>                                      &mapping,
+      const FESystem<dim>                                     &fe,
+      const Materials<dim>                                    &materials,
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
-      const FunctionParser<dim> &                              body_force)
-      : parameters(parameters)
-      , mapping(mapping)
-      , fe(fe)
-      , materials(materials)
-      , neumann(neumann)
-      , body_force(body_force)
-    {}
+      const FunctionParser<dim>                               &body_force)
+        : parameters(parameters)
+        , mapping(mapping)
+        , fe(fe)
+        , materials(materials)
+        , neumann(neumann)
+        , body_force(body_force)
+    {
+    }
 
 
     template <int dim>
     void
     Assembler<dim>::assemble(
-      const DoFHandler<dim> &              dof_handler,
+      const DoFHandler<dim>               &dof_handler,
       const TrilinosWrappers::MPI::Vector &solution,
-      const AffineConstraints<double> &    constraints,
-      TrilinosWrappers::SparseMatrix *     matrix,
-      TrilinosWrappers::MPI::Vector &      rhs,
-      TrilinosWrappers::MPI::Vector &      internal_force,
-      TrilinosWrappers::MPI::Vector &      external_force) const
+      const AffineConstraints<double>     &constraints,
+      TrilinosWrappers::SparseMatrix      *matrix,
+      TrilinosWrappers::MPI::Vector       &rhs,
+      TrilinosWrappers::MPI::Vector       &internal_force,
+      TrilinosWrappers::MPI::Vector       &external_force) const
     {
-      const QGauss<dim>     quadrature(fe.degree + 1);
-      const QGauss<dim - 1> face_quadrature(fe.degree + 1);
-      FEValues<dim>         fe_values(mapping,
+      const QGauss<dim>                quadrature(fe.degree + 1);
+      const QGauss<dim - 1>            face_quadrature(fe.degree + 1);
+      FEValues<dim>                    fe_values(mapping,
                               fe,
                               quadrature,
                               update_values | update_gradients |
                                 update_quadrature_points | update_JxW_values);
-      FEFaceValues<dim>     fe_face_values(mapping,
+      FEFaceValues<dim>                fe_face_values(mapping,
                                        fe,
                                        face_quadrature,
                                        update_values |
@@ -55,8 +56,8 @@ namespace Signorini
                                          update_normal_vectors |
                                          update_JxW_values);
       const FEValuesExtractors::Vector displacement(0);
-      const bool axisymmetric = parameters.axisymmetric;
-      const bool projected    = parameters.projected_volumetric_strain;
+      const bool                       axisymmetric = parameters.axisymmetric;
+      const bool projected = parameters.projected_volumetric_strain;
       Material::ProjectedVolumetricStrain<dim> projection(fe,
                                                           quadrature,
                                                           axisymmetric);
@@ -82,9 +83,9 @@ namespace Signorini
         if (cell->is_locally_owned())
           {
             fe_values.reinit(cell);
-            cell_matrix = 0;
-            cell_fint   = 0;
-            cell_fext   = 0;
+            cell_matrix          = 0;
+            cell_fint            = 0;
+            cell_fext            = 0;
             const auto &material = *materials.at(cell->material_id());
             fe_values[displacement].get_function_symmetric_gradients(solution,
                                                                      strains);
@@ -103,12 +104,12 @@ namespace Signorini
                 body_force.vector_value(x, force_values);
                 for (unsigned int i = 0; i < n; ++i)
                   {
-                    const unsigned int c = fe.system_to_component_index(i).first;
-                    const double       hoop =
-                      axisymmetric && c == 0 ?
-                              fe_values.shape_value(i, q) / x[0] :
-                              0.;
-                    B[q][i]    = Material::to_3d<dim>(
+                    const unsigned int c =
+                      fe.system_to_component_index(i).first;
+                    const double hoop = axisymmetric && c == 0 ?
+                                          fe_values.shape_value(i, q) / x[0] :
+                                          0.;
+                    B[q][i]           = Material::to_3d<dim>(
                       fe_values[displacement].symmetric_gradient(i, q), hoop);
                     theta_i[i] = trace(B[q][i]);
                     cell_fext(i) +=
@@ -128,9 +129,8 @@ namespace Signorini
             for (unsigned int q = 0; q < nq; ++q)
               {
                 const Point<dim> &x = fe_values.quadrature_point(q);
-                const double      hoop =
-                  axisymmetric ? u_values[q][0] / x[0] : 0.;
-                double theta_q = 0;
+                const double hoop   = axisymmetric ? u_values[q][0] / x[0] : 0.;
+                double       theta_q = 0;
                 if (projected)
                   {
                     theta_q = projection.value_at(q, theta_bar);
@@ -139,8 +139,10 @@ namespace Signorini
                       B[q][i] += (dtheta_bar[i] - trace(B[q][i])) / 3. *
                                  unit_symmetric_tensor<3>();
                   }
-                const SymmetricTensor<2, 3> strain = point_strain<dim>(
-                  strains[q], hoop, projected ? &theta_q : nullptr);
+                const SymmetricTensor<2, 3> strain =
+                  point_strain<dim>(strains[q],
+                                    hoop,
+                                    projected ? &theta_q : nullptr);
                 SymmetricTensor<2, 3> stress;
                 SymmetricTensor<4, 3> C;
                 material.evaluate(strain, stress, matrix ? &C : nullptr);
@@ -176,10 +178,10 @@ namespace Signorini
     void
     Assembler<dim>::add_neumann(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
-      FEFaceValues<dim> &                                   fe_face_values,
-      Vector<double> &                                      cell_fext) const
+      FEFaceValues<dim>                                    &fe_face_values,
+      Vector<double>                                       &cell_fext) const
     {
-      const auto &       bc = parameters.boundary_conditions;
+      const auto        &bc = parameters.boundary_conditions;
       const unsigned int n  = fe.n_dofs_per_cell();
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary())
@@ -195,7 +197,7 @@ namespace Signorini
                      ++q)
                   {
                     Tensor<1, dim> traction;
-                    const auto &   x = fe_face_values.quadrature_point(q);
+                    const auto    &x = fe_face_values.quadrature_point(q);
                     if (bc.neumann[k].type == NeumannType::traction)
                       for (unsigned int d = 0; d < dim; ++d)
                         traction[d] = g.value(x, d);

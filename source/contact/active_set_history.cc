@@ -83,7 +83,7 @@ namespace Signorini
     ActiveSetHistory<dim>::end_geometric_iteration(Points            &points,
                                                    const unsigned int g) const
     {
-      unsigned int       n            = 0;
+      unsigned int n = 0;
       for (auto &point : points)
         {
           const PointStatus status = point.status;
@@ -427,7 +427,7 @@ namespace Signorini
     template <int dim>
     NodeFriction<dim>
     ActiveSetHistory<dim>::node_anti_cycling(const types::global_dof_index dof,
-                                             const NodeFriction<dim> &nf,
+                                             const NodeFriction<dim>      &nf,
                                              const NodeFriction<dim> *previous,
                                              const bool         new_iterate,
                                              const bool         owned,

@@ -69,8 +69,8 @@ namespace Signorini
       // unknowns: they are summed and distributed once per group (a mortar
       // face has tens of points per master face).
       std::vector<types::global_dof_index> group_dofs;
-      int        group_face = -1, group_master = -1;
-      const auto flush      = [&]() {
+      int                                  group_face = -1, group_master = -1;
+      const auto                           flush = [&]() {
         if (group_dofs.empty())
           return;
         if (matrix)
@@ -148,8 +148,8 @@ namespace Signorini
       e.by_node               = node_statuses.by_node(p);
 
       // Point state (formulation.md 2).
-      e.n_e = face.u_local.size();
-      e.n_l = face.node_local.size();
+      e.n_e                          = face.u_local.size();
+      e.n_l                          = face.node_local.size();
       const std::vector<double> &psi = point.psi;
       // Multiplier basis: psi, or the dual psi~ (node-status pairs).
       const std::vector<double> &psi_c = point.psi_lambda;
@@ -187,7 +187,7 @@ namespace Signorini
           point.normal    = proj.normal;
           point.x_m_rigid = proj.x_m;
           point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);
-          e.dn_du         = proj.dnormal;
+          e.dn_du        = proj.dnormal;
         }
       s.normal   = point.normal;
       s.tangents = point.tangents;
@@ -195,7 +195,7 @@ namespace Signorini
       e.master                 = point.master_face >= 0 ?
                                    &surfaces.master_faces()[point.master_face] :
                                    nullptr;
-      e.n_m               = e.master ? e.master->dofs.size() : 0;
+      e.n_m                    = e.master ? e.master->dofs.size() : 0;
       const int            m   = point.master_face;
       const Point<dim>     x_m = e.master ?
                                    surfaces.master_position(m, point.N_m, state) :

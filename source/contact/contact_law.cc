@@ -90,7 +90,7 @@ namespace Signorini
       else
         {
           Tensor<1, dim> e;
-          e[axis] = 1.;
+          e[axis]     = 1.;
           tangents[0] = cross_product_3d(n, e);
           tangents[0] /= tangents[0].norm();
           // (tau_1, tau_2, n) right-handed, like (tau_1, n) in 2D.
@@ -157,8 +157,8 @@ namespace Signorini
                          const Tensor<1, dim>     &h,
                          PointResponse<dim>       &response)
       {
-        const auto &T     = f.state.tangents;
-        response.status   = PointStatus::stick;
+        const auto &T   = f.state.tangents;
+        response.status = PointStatus::stick;
         // L_f^e = -w mu lambda_f N^e h.
         response.force += -f.mu_lf * h;
         response.dforce_dd += -f.mu_lf * f.rho_t * f.P;
@@ -187,8 +187,8 @@ namespace Signorini
                         const Tensor<2, dim>     &K_B,
                         PointResponse<dim>       &response)
       {
-        const auto &T           = f.state.tangents;
-        const auto &Lambda      = f.state.Lambda;
+        const auto  &T          = f.state.tangents;
+        const auto  &Lambda     = f.state.Lambda;
         const double mu_lf      = f.mu_lf;
         response.status         = PointStatus::slip;
         response.slip_direction = q;
@@ -253,7 +253,7 @@ namespace Signorini
       // as written, which keeps the Jacobian the exact derivative also at
       // iterates where an in-contact point has lambda > 0.
       const double lambda_f = state.lambda;
-      response.lambda_f = lambda_f;
+      response.lambda_f     = lambda_f;
 
       // Section 3.3: in contact with lambda_f == 0 is treated as a free
       // point for friction, otherwise K_ff = 0 (stick) or
@@ -262,8 +262,7 @@ namespace Signorini
       // (lambda still 0); "zero" means at most
       // zero_threshold, the round-off level of the solve that closed it.
       response.friction_active =
-        response.in_contact &&
-        (std::abs(lambda_f) > parameters.zero_threshold);
+        response.in_contact && (std::abs(lambda_f) > parameters.zero_threshold);
       if (!response.friction_active)
         {
           // L_f^f = +w psi Lambda, K_ff = I: drives Lambda to 0; weighted
@@ -287,7 +286,7 @@ namespace Signorini
                                  parameters.mu * lambda_f,
                                  P,
                                  P * state.slip};
-      Tensor<1, dim> T_Lambda;
+      Tensor<1, dim>           T_Lambda;
       for (unsigned int k = 0; k < dim - 1; ++k)
         T_Lambda += state.Lambda[k] * state.tangents[k];
       const Tensor<1, dim> h      = T_Lambda + f.rho_t * f.v;
@@ -295,8 +294,8 @@ namespace Signorini
 
       // A frozen slip direction (anti-cycling), carried into the current
       // tangent plane; ignored if the plane turned away from it.
-      Tensor<1, dim> q_frozen = P * state.frozen_slip_direction;
-      const bool frozen_slip  = q_frozen.norm() > 0.5;
+      Tensor<1, dim> q_frozen    = P * state.frozen_slip_direction;
+      const bool     frozen_slip = q_frozen.norm() > 0.5;
       if (frozen_slip)
         q_frozen /= q_frozen.norm();
 
@@ -325,8 +324,10 @@ namespace Signorini
     // Explicit instantiations.
     template std::array<Tensor<1, 2>, 1>
     tangent_basis<2>(const Tensor<1, 2> &);
-    template unsigned int tangent_axis<2>(const Tensor<1, 2> &);
-    template unsigned int tangent_axis<3>(const Tensor<1, 3> &);
+    template unsigned int
+    tangent_axis<2>(const Tensor<1, 2> &);
+    template unsigned int
+    tangent_axis<3>(const Tensor<1, 3> &);
     template std::array<Tensor<1, 2>, 1>
     tangent_basis<2>(const Tensor<1, 2> &, const unsigned int);
     template std::array<Tensor<1, 3>, 2>

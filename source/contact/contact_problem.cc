@@ -261,7 +261,7 @@ namespace Signorini
     void
     ContactProblem<dim>::restore_points(const PointsState &saved)
     {
-      pairing.points() = saved.points;
+      pairing.points()                  = saved.points;
       node_statuses.normal_statuses()   = saved.node_active;
       node_statuses.friction_statuses() = saved.node_friction;
       history.restore(saved.history);

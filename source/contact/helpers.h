@@ -123,7 +123,7 @@ namespace Signorini
       std::vector<unsigned int>       comp;
       std::vector<NodeStatusRow<dim>> rows;
     };
-  }   // namespace Contact
+  } // namespace Contact
 } // namespace Signorini
 
 #endif

@@ -32,7 +32,7 @@ namespace Signorini
     FixedRule<dim>::FixedRule(const IntegrationRule rule,
                               const unsigned int    order,
                               const unsigned int    fe_degree)
-      : nodal(rule == IntegrationRule::nodal)
+        : nodal(rule == IntegrationRule::nodal)
     {
       const std::string per_direction =
         dim == 3 ? " per direction" : std::string();
@@ -53,10 +53,9 @@ namespace Signorini
                           per_direction + ")";
             break;
           case IntegrationRule::simpson:
-            quadrature = QIterated<dim - 1>(QSimpson<1>(), order);
-            description =
-              "simpson (" + std::to_string(order) + " panels" + per_direction +
-              ")";
+            quadrature  = QIterated<dim - 1>(QSimpson<1>(), order);
+            description = "simpson (" + std::to_string(order) + " panels" +
+                          per_direction + ")";
             break;
           case IntegrationRule::newton_cotes:
             quadrature  = newton_cotes<dim - 1>(order);

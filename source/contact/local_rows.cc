@@ -29,10 +29,10 @@ namespace Signorini
       const unsigned int n_e = e.n_e, n_m = e.n_m, n_l = e.n_l;
 
       // Local dofs: e | m | lambda | Lambda.
-      e.n_f = e.fric ? n_l * (dim - 1) : 0;
-      e.o_c = n_e + n_m;
-      e.o_f = e.o_c + n_l;
-      e.n   = e.o_f + e.n_f;
+      e.n_f                  = e.fric ? n_l * (dim - 1) : 0;
+      e.o_c                  = n_e + n_m;
+      e.o_f                  = e.o_c + n_l;
+      e.n                    = e.o_f + e.n_f;
       const unsigned int o_c = e.o_c, o_f = e.o_f;
 
       // Shape value and component of each displacement column, with the
@@ -87,11 +87,10 @@ namespace Signorini
           const auto  &L   = e.node_data[l].Lambda;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
-              const double r_f =
-                !nf.active ? law.free_friction_scale * L[k] :
-                nf.stick ?
-                             -law.mu * lam * e.slip_t[k] :
-                             law.mu * lam / law.rho_t * (L[k] - nf.H[k] / nf.H.norm());
+              const double r_f = !nf.active ? law.free_friction_scale * L[k] :
+                                 nf.stick   ? -law.mu * lam * e.slip_t[k] :
+                                              law.mu * lam / law.rho_t *
+                                              (L[k] - nf.H[k] / nf.H.norm());
               F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
             }
         }
@@ -208,8 +207,8 @@ namespace Signorini
                 for (unsigned int k = 0; k < dim - 1; ++k)
                   {
                     for (unsigned int a = 0; a < n_u; ++a)
-                      K(of + k, a) += wl * (-law.mu * lam) *
-                                      s.tangents[k][comp[a]] * Nd[a];
+                      K(of + k, a) +=
+                        wl * (-law.mu * lam) * s.tangents[k][comp[a]] * Nd[a];
                     K(of + k, e.o_c + l) += wl * (-law.mu * e.slip_t[k]);
                   }
               continue;

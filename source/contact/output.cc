@@ -134,7 +134,7 @@ namespace Signorini
       for (unsigned int p = 0; p < result.size(); ++p)
         if (pairing.obstacle(p))
           {
-            result[p].rigid                 = true;
+            result[p].rigid = true;
             result[p].obstacle_displacement =
               pairing.obstacle(p)->get_motion().translation;
           }

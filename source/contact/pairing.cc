@@ -161,8 +161,7 @@ namespace Signorini
       n_deep                = 0;
       ++pairings_in_step;
       for (auto &point : point_store)
-        n_pinned +=
-          pair_point(point, state, x_master, inside, tree);
+        n_pinned += pair_point(point, state, x_master, inside, tree);
       n_newly_pinned = Utilities::MPI::sum(n_pinned, comm);
       n_deep         = Utilities::MPI::sum(n_deep, comm);
       set_multiplier_basis();
@@ -177,9 +176,9 @@ namespace Signorini
                              const std::vector<Point<dim>>       &inside,
                              const Tree                          &tree)
     {
-      const auto        &contact      = parameters.contact;
-      const auto        &face         = surfaces.slave_faces()[point.face];
-      const unsigned int p            = face.pair;
+      const auto        &contact = parameters.contact;
+      const auto        &face    = surfaces.slave_faces()[point.face];
+      const unsigned int p       = face.pair;
       const Point<dim>   x_e =
         surfaces.slave_position(point.face, point.psi, point.x_ref, state);
 
@@ -205,8 +204,9 @@ namespace Signorini
           // The increment since the step start of the obstacle's material
           // point now at x^m.
           point.rigid_increment =
-            projection.x_m - motion_at_start[p].apply(
-                               obstacles[p]->get_motion().inverse(projection.x_m));
+            projection.x_m -
+            motion_at_start[p].apply(
+              obstacles[p]->get_motion().inverse(projection.x_m));
         }
       else if (point.geometric.pinned_face >= 0 && !mortar)
         {
@@ -230,7 +230,7 @@ namespace Signorini
           point.master_face != point.geometric.face_1)
         {
           point.geometric.pinned_face = point.master_face;
-          pinned            = true;
+          pinned                      = true;
         }
       point.geometric.face_2 = point.geometric.face_1;
       point.geometric.face_1 = point.master_face;
@@ -444,8 +444,8 @@ namespace Signorini
                       (old_points[j].xi - point_store[i].xi).norm_square();
                     d2 < best)
                   {
-                    best                      = d2;
-                    point_store[i].status     = old_points[j].status;
+                    best                  = d2;
+                    point_store[i].status = old_points[j].status;
                     point_store[i].friction_active =
                       old_points[j].friction_active;
                     point_store[i].slip_direction =

@@ -36,9 +36,9 @@ namespace Signorini
       template <int dim>
       struct FaceMapValues
       {
-        Point<dim>                              x;
-        std::array<Tensor<1, dim>, dim - 1>     a;   // dx/dxi_k
-        Tensor<1, dim> a2[dim - 1][dim - 1] = {};    // d2x/dxi_k dxi_l
+        Point<dim>                          x;
+        std::array<Tensor<1, dim>, dim - 1> a;    // dx/dxi_k
+        Tensor<1, dim> a2[dim - 1][dim - 1] = {}; // d2x/dxi_k dxi_l
       };
 
       // 1D Lagrange basis of degree 1 (nodes 0, 1) or 2 (nodes 0, 1, 1/2:
@@ -84,7 +84,7 @@ namespace Signorini
       template <int dim>
       FaceMapValues<dim>
       evaluate_face_map(const std::vector<Point<dim>> &X,
-                        const Point<dim - 1> &         xi)
+                        const Point<dim - 1>          &xi)
       {
         const unsigned int degree = face_degree<dim>(X.size());
         FaceMapValues<dim> v;
@@ -106,7 +106,7 @@ namespace Signorini
             const Lagrange1D ly = lagrange_1d(degree, xi[1]);
             for (unsigned int n = 0; n < X.size(); ++n)
               {
-                const unsigned int a = quad_a[n], b = quad_b[n];
+                const unsigned int   a = quad_a[n], b = quad_b[n];
                 const Tensor<1, dim> x = X[n];
                 v.x += (lx.v[a] * ly.v[b]) * x;
                 v.a[0] += (lx.d[a] * ly.v[b]) * x;
@@ -174,8 +174,7 @@ namespace Signorini
       constexpr double small_step = 1e-6;
 
       const auto objective = [&](const Point<dim - 1> &xi) {
-        return 0.5 * (evaluate_face_map(face_points, xi).x - p)
-                       .norm_square();
+        return 0.5 * (evaluate_face_map(face_points, xi).x - p).norm_square();
       };
 
       FaceProjection<dim> result;
@@ -185,7 +184,7 @@ namespace Signorini
 
       for (unsigned int it = 0; it < max_iterations; ++it)
         {
-          result.n_iterations = it + 1;
+          result.n_iterations        = it + 1;
           const FaceMapValues<dim> v = evaluate_face_map(face_points, xi);
           const Tensor<1, dim>     r = v.x - p;
 
@@ -205,7 +204,7 @@ namespace Signorini
           AssertThrow(positive_definite(H),
                       ExcMessage("project_onto_face: degenerate face."));
 
-          Tensor<1, dim - 1> step = -(invert(H) * grad);
+          Tensor<1, dim - 1> step     = -(invert(H) * grad);
           double             step_max = 0.;
           for (unsigned int k = 0; k < dim - 1; ++k)
             step_max = std::max(step_max, std::abs(step[k]));
@@ -243,18 +242,17 @@ namespace Signorini
         }
 
       const FaceMapValues<dim> v = evaluate_face_map(face_points, xi);
-      result.xi       = xi;
-      result.x_m      = v.x;
-      result.tangents = v.a;
-      result.normal   = unit_normal<dim>(v.a);
+      result.xi                  = xi;
+      result.x_m                 = v.x;
+      result.tangents            = v.a;
+      result.normal              = unit_normal<dim>(v.a);
       if (result.normal * (inside_point - result.x_m) < 0.)
         result.normal = -result.normal;
       result.gap = (p - result.x_m) * result.normal;
 
       result.violation = 0.;
       for (unsigned int k = 0; k < dim - 1; ++k)
-        result.violation =
-          std::max({result.violation, -xi[k], xi[k] - 1.});
+        result.violation = std::max({result.violation, -xi[k], xi[k] - 1.});
       result.inside = (result.violation <= tol_xi);
       return result;
     }
@@ -264,7 +262,7 @@ namespace Signorini
     void
     face_shape_values(const unsigned int    n_points,
                       const Point<dim - 1> &xi,
-                      std::vector<double> & values)
+                      std::vector<double>  &values)
     {
       const unsigned int degree = face_degree<dim>(n_points);
       values.resize(n_points);
@@ -284,11 +282,10 @@ namespace Signorini
     template <int dim>
     FaceGeometry<dim>
     face_geometry(const std::vector<Point<dim>> &face_points,
-                  const Point<dim - 1> &         xi)
+                  const Point<dim - 1>          &xi)
     {
-      const FaceMapValues<dim> v =
-        evaluate_face_map(face_points, xi);
-      FaceGeometry<dim> g;
+      const FaceMapValues<dim> v = evaluate_face_map(face_points, xi);
+      FaceGeometry<dim>        g;
       g.x        = v.x;
       g.tangents = v.a;
       if constexpr (dim == 2)
@@ -303,8 +300,8 @@ namespace Signorini
     template <int dim>
     LineIntersection<dim>
     intersect_line_with_face(const std::vector<Point<dim>> &face_points,
-                             const Point<dim> &             p,
-                             const Tensor<1, dim> &         d)
+                             const Point<dim>              &p,
+                             const Tensor<1, dim>          &d)
     {
       LineIntersection<dim> result;
       for (unsigned int k = 0; k < dim - 1; ++k)
@@ -312,9 +309,10 @@ namespace Signorini
       // F(xi, t) = x(xi) - p - t d; columns of dF: a_0 (, a_1), -d.
       for (unsigned int it = 0; it < 30; ++it)
         {
-          const FaceMapValues<dim> v = evaluate_face_map(face_points, result.xi);
-          const Tensor<1, dim>     F = v.x - p - result.t * d;
-          Tensor<2, dim>           J;
+          const FaceMapValues<dim> v =
+            evaluate_face_map(face_points, result.xi);
+          const Tensor<1, dim> F = v.x - p - result.t * d;
+          Tensor<2, dim>       J;
           for (unsigned int r = 0; r < dim; ++r)
             {
               for (unsigned int k = 0; k < dim - 1; ++k)
@@ -325,7 +323,7 @@ namespace Signorini
           if (!(std::abs(det) > 1e-14 * std::pow(d.norm(), dim) *
                                   std::pow(v.a[0].norm() + 1e-300, dim - 1)))
             return result; // line parallel to the face
-          const Tensor<1, dim> step = -(invert(J) * F);
+          const Tensor<1, dim> step     = -(invert(J) * F);
           double               step_max = 0.;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
@@ -345,20 +343,21 @@ namespace Signorini
 
     // ------------------------------------------------- instantiations
 
-#define SIGNORINI_INSTANTIATE(dim)                                         \
-  template FaceProjection<dim> project_onto_face<dim>(                    \
-    const Point<dim> &,                                                    \
-    const std::vector<Point<dim>> &,                                       \
-    const Point<dim> &,                                                    \
-    const double,                                                          \
-    const unsigned int);                                                   \
-  template LineIntersection<dim> intersect_line_with_face<dim>(           \
-    const std::vector<Point<dim>> &,                                       \
-    const Point<dim> &,                                                    \
-    const Tensor<1, dim> &);                                               \
-  template void face_shape_values<dim>(                                   \
-    const unsigned int, const Point<dim - 1> &, std::vector<double> &);    \
-  template FaceGeometry<dim> face_geometry<dim>(                          \
+#define SIGNORINI_INSTANTIATE(dim)                                          \
+  template FaceProjection<dim> project_onto_face<dim>(                      \
+    const Point<dim> &,                                                     \
+    const std::vector<Point<dim>> &,                                        \
+    const Point<dim> &,                                                     \
+    const double,                                                           \
+    const unsigned int);                                                    \
+  template LineIntersection<dim> intersect_line_with_face<dim>(             \
+    const std::vector<Point<dim>> &,                                        \
+    const Point<dim> &,                                                     \
+    const Tensor<1, dim> &);                                                \
+  template void              face_shape_values<dim>(const unsigned int,     \
+                                       const Point<dim - 1> &, \
+                                       std::vector<double> &); \
+  template FaceGeometry<dim> face_geometry<dim>(                            \
     const std::vector<Point<dim>> &, const Point<dim - 1> &);
 
     SIGNORINI_INSTANTIATE(2)

@@ -51,11 +51,16 @@ namespace Signorini
       // (side = +1) or on its right (side = -1): one Sutherland-Hodgman
       // stage.
       Polygon
-      clip(const Polygon &P, const Point<2> &a, const Point<2> &b, const int side)
+      clip(const Polygon  &P,
+           const Point<2> &a,
+           const Point<2> &b,
+           const int       side)
       {
         Polygon            out;
         const Tensor<1, 2> e = b - a;
-        const auto s = [&](const Point<2> &x) { return side * cross(e, x - a); };
+        const auto         s = [&](const Point<2> &x) {
+          return side * cross(e, x - a);
+        };
         for (unsigned int i = 0; i < P.size(); ++i)
           {
             const Point<2> &p = P[i], &q = P[(i + 1) % P.size()];
@@ -80,9 +85,9 @@ namespace Signorini
             for (unsigned int i = 0; i < Q.size() && Q.size() > 3; ++i)
               {
                 const unsigned int n = Q.size();
-                const Point<2> &a = Q[(i + n - 1) % n], &b = Q[i],
+                const Point<2>    &a = Q[(i + n - 1) % n], &b = Q[i],
                                &c = Q[(i + 1) % n];
-                const double ac = (c - a).norm();
+                const double ac   = (c - a).norm();
                 const bool   on_line =
                   ac < sliver || std::abs(cross(b - a, c - a)) < sliver * ac;
                 if ((b - a).norm() < sliver || on_line)
@@ -142,7 +147,8 @@ namespace Signorini
         const unsigned int n = P.size();
         for (unsigned int i = 0; i < n; ++i)
           {
-            const Point<2> &a = P[(i + n - 1) % n], &b = P[i], &c = P[(i + 1) % n];
+            const Point<2> &a = P[(i + n - 1) % n], &b = P[i],
+                           &c = P[(i + 1) % n];
             if (cross(b - a, c - b) < 0 && n == 4)
               return {{P[i], P[(i + 1) % 4], P[(i + 2) % 4]},
                       {P[i], P[(i + 2) % 4], P[(i + 3) % 4]}};
@@ -155,9 +161,9 @@ namespace Signorini
     template <>
     Segmentation<2>
     segment_slave_face<2>(
-      const std::vector<Point<2>> &                      slave,
+      const std::vector<Point<2>>                      &slave,
       const std::vector<const std::vector<Point<2>> *> &candidates,
-      const unsigned int                                 n_points)
+      const unsigned int                                n_points)
     {
       const Tensor<1, 2> d = face_geometry<2>(slave, Point<1>(0.5)).normal;
       struct Interval
@@ -170,8 +176,10 @@ namespace Signorini
       for (unsigned int m = 0; m < candidates.size(); ++m)
         {
           // The face's two vertices are its first nodes.
-          const auto r0 = intersect_line_with_face<2>(slave, (*candidates[m])[0], d);
-          const auto r1 = intersect_line_with_face<2>(slave, (*candidates[m])[1], d);
+          const auto r0 =
+            intersect_line_with_face<2>(slave, (*candidates[m])[0], d);
+          const auto r1 =
+            intersect_line_with_face<2>(slave, (*candidates[m])[1], d);
           if (!r0.converged || !r1.converged)
             continue;
           const double lo = std::min(r0.xi[0], r1.xi[0]);
@@ -185,8 +193,8 @@ namespace Signorini
         }
       std::sort(cuts.begin(), cuts.end());
 
-      Segmentation<2>     result;
-      const QGauss<1>     gauss(n_points);
+      Segmentation<2> result;
+      const QGauss<1> gauss(n_points);
       for (unsigned int i = 0; i + 1 < cuts.size(); ++i)
         {
           const double a = cuts[i], b = cuts[i + 1];
@@ -215,13 +223,15 @@ namespace Signorini
     template <>
     Segmentation<3>
     segment_slave_face<3>(
-      const std::vector<Point<3>> &                      slave,
+      const std::vector<Point<3>>                      &slave,
       const std::vector<const std::vector<Point<3>> *> &candidates,
-      const unsigned int                                 n_points)
+      const unsigned int                                n_points)
     {
       const Tensor<1, 3> d = face_geometry<3>(slave, Point<2>(0.5, 0.5)).normal;
-      const Polygon      square = {
-        Point<2>(0, 0), Point<2>(1, 0), Point<2>(1, 1), Point<2>(0, 1)};
+      const Polygon      square = {Point<2>(0, 0),
+                                   Point<2>(1, 0),
+                                   Point<2>(1, 1),
+                                   Point<2>(0, 1)};
 
       // The master faces carried onto the slave face, as convex CCW parts.
       std::vector<std::pair<Polygon, int>> clips;
@@ -258,19 +268,19 @@ namespace Signorini
       };
       // Q minus convex C as disjoint convex pieces: for edge e, the part of
       // Q inside edges 0..e-1 and outside edge e.
-      const auto subtract = [](Polygon Q, const Polygon &C,
-                               std::vector<Polygon> &out) {
-        for (unsigned int e = 0; e < C.size(); ++e)
-          {
-            const Point<2> &a = C[e], &b = C[(e + 1) % C.size()];
-            const Polygon   O = clip(Q, a, b, -1);
-            if (O.size() >= 3 && signed_area(O) >= sliver)
-              out.push_back(O);
-            Q = clip(Q, a, b, +1);
-            if (Q.size() < 3 || signed_area(Q) < sliver)
-              break;
-          }
-      };
+      const auto subtract =
+        [](Polygon Q, const Polygon &C, std::vector<Polygon> &out) {
+          for (unsigned int e = 0; e < C.size(); ++e)
+            {
+              const Point<2> &a = C[e], &b = C[(e + 1) % C.size()];
+              const Polygon   O = clip(Q, a, b, -1);
+              if (O.size() >= 3 && signed_area(O) >= sliver)
+                out.push_back(O);
+              Q = clip(Q, a, b, +1);
+              if (Q.size() < 3 || signed_area(Q) < sliver)
+                break;
+            }
+        };
 
       // The usual case, master faces that do not overlap one another: each
       // covers (unit square) x (its polygon), one convex piece.
@@ -339,7 +349,7 @@ namespace Signorini
             pieces.emplace_back(std::move(Q), -1);
         }
 
-      Segmentation<3>                    result;
+      Segmentation<3>                   result;
       const QWitherdenVincentSimplex<2> triangle(n_points);
       for (const auto &[piece, master] : pieces)
         {
@@ -348,7 +358,7 @@ namespace Signorini
           for (unsigned int i = 1; i + 1 < P.size(); ++i)
             {
               const Tensor<1, 2> e1 = P[i] - P[0], e2 = P[i + 1] - P[0];
-              const double       J  = cross(e1, e2); // twice the area
+              const double       J = cross(e1, e2); // twice the area
               if (J < 2 * sliver)
                 continue;
               for (unsigned int q = 0; q < triangle.size(); ++q)

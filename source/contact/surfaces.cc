@@ -57,9 +57,9 @@ namespace Signorini
         unsigned int                             pair;
       };
       std::map<types::global_dof_index, SeenNode> seen;
-      std::vector<double>     h_sum, h_count, e_max, e_master;
-      std::vector<MasterFace<dim>>                own_master_faces;
-      std::vector<MasterLine> own_master_lines;
+      std::vector<double>          h_sum, h_count, e_max, e_master;
+      std::vector<MasterFace<dim>> own_master_faces;
+      std::vector<MasterLine>      own_master_lines;
       // Outward normals at slave face centres; positions of support points.
       std::unique_ptr<FEFaceValues<dim>> centre_values;
     };
@@ -197,8 +197,9 @@ namespace Signorini
                                   cell->face_orientation(f),
                                   cell->face_flip(f),
                                   cell->face_rotation(f));
-          face.X[k] = mapping.transform_unit_to_real_cell(
-            cell, fe.unit_support_point(cell_i));
+          face.X[k] =
+            mapping.transform_unit_to_real_cell(cell,
+                                                fe.unit_support_point(cell_i));
           face.k_node[k] =
             std::find(face.node_local.begin(), face.node_local.end(), cell_i) -
             face.node_local.begin();
@@ -221,9 +222,9 @@ namespace Signorini
         {
           scan.h_sum[p] += cell->face(f)->diameter();
           scan.h_count[p] += 1;
-          scan.e_max[p] =
-            std::max(scan.e_max[p],
-                     materials.at(cell->material_id())->representative_modulus());
+          scan.e_max[p] = std::max(
+            scan.e_max[p],
+            materials.at(cell->material_id())->representative_modulus());
           slaves.push_back(face);
         }
     }
@@ -257,12 +258,13 @@ namespace Signorini
       face.X.resize(n_face_nodes);
       for (unsigned int i = 0; i < fe.n_dofs_per_face(); ++i)
         {
-          const auto [c, k]         = fe.face_system_to_component_index(i);
-          const unsigned int cell_i = fe.face_to_cell_index(i,
-                                                            f,
-                                                            cell->face_orientation(f),
-                                                            cell->face_flip(f),
-                                                            cell->face_rotation(f));
+          const auto [c, k] = fe.face_system_to_component_index(i);
+          const unsigned int cell_i =
+            fe.face_to_cell_index(i,
+                                  f,
+                                  cell->face_orientation(f),
+                                  cell->face_flip(f),
+                                  cell->face_rotation(f));
           face.dofs[k * dim + c] = cell_dofs[cell_i];
           if (c == 0)
             face.X[k] = mapping.transform_unit_to_real_cell(
@@ -472,7 +474,7 @@ namespace Signorini
       // its own: the face keeps psi there).
       for (auto &face : slaves)
         {
-          const unsigned int n_l = face.node_local.size();
+          const unsigned int n_l     = face.node_local.size();
           bool               hanging = false;
           face.lambda_dofs.clear();
           face.friction_dofs.clear();

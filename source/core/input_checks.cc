@@ -76,11 +76,11 @@ namespace Signorini
     builtin_function_names()
     {
       static const std::set<std::string> names = [] {
-        std::set<std::string> n = {"sin",   "cos",   "tan",  "asin", "acos",
-                                   "atan",  "atan2", "sinh", "cosh", "tanh",
+        std::set<std::string> n = {"sin",   "cos",   "tan",   "asin", "acos",
+                                   "atan",  "atan2", "sinh",  "cosh", "tanh",
                                    "asinh", "acosh", "atanh", "log2", "log10",
-                                   "log",   "ln",    "exp",  "sqrt", "sign",
-                                   "rint",  "abs",   "sum",  "avg",  "min",
+                                   "log",   "ln",    "exp",   "sqrt", "sign",
+                                   "rint",  "abs",   "sum",   "avg",  "min",
                                    "max"};
         for (const auto &f : internal::FunctionParser::get_function_names())
           n.insert(f);
@@ -167,8 +167,8 @@ namespace Signorini
     {
       std::ostringstream info;
       e.print_info(info);
-      std::string text =
-        Utilities::trim(std::regex_replace(info.str(), std::regex("\\s+"), " "));
+      std::string text = Utilities::trim(
+        std::regex_replace(info.str(), std::regex("\\s+"), " "));
       const std::string said = "The parser said: ";
       const auto        pos  = text.find(said);
       text = pos == std::string::npos ? text : text.substr(pos + said.size());
@@ -181,7 +181,7 @@ namespace Signorini
     // evaluated once, as muparser parses on the first evaluation.
     template <int dim>
     std::string
-    expression_problem(const std::string &                  expression,
+    expression_problem(const std::string                   &expression,
                        const std::map<std::string, double> &constants,
                        const bool                           time_dependent)
     {
@@ -214,19 +214,20 @@ namespace Signorini
 
     template <int dim>
     void
-    check_expression_input(const ExpressionInput &              input,
+    check_expression_input(const ExpressionInput               &input,
                            const std::map<std::string, double> &constants)
     {
       const unsigned int n = input.expressions.size();
       for (unsigned int i = 0; i < n; ++i)
         {
-          const std::string problem = expression_problem<dim>(
-            input.expressions[i], constants, input.time_dependent);
+          const std::string problem =
+            expression_problem<dim>(input.expressions[i],
+                                    constants,
+                                    input.time_dependent);
           if (problem.empty())
             continue;
-          const std::string label = i < input.labels.size() ?
-                                      input.labels[i] :
-                                      std::to_string(i + 1);
+          const std::string label =
+            i < input.labels.size() ? input.labels[i] : std::to_string(i + 1);
           const std::string component =
             n > 1 ? ", component " + label + " (expression " +
                       std::to_string(i + 1) + " of " + std::to_string(n) + ")" :
@@ -250,7 +251,7 @@ namespace Signorini
     expression_inputs(const Parameters &parameters)
     {
       std::vector<ExpressionInput> inputs;
-      const auto &                 bc = parameters.boundary_conditions;
+      const auto                  &bc = parameters.boundary_conditions;
       for (unsigned int k = 0; k < bc.dirichlet.size(); ++k)
         {
           ExpressionInput input;
@@ -291,9 +292,9 @@ namespace Signorini
       stress.where = "subsection 'Reference solution', parameter 'Stress'";
       stress.expressions = ref.stress;
       for (unsigned int i = 0; i < ref.stress.size(); ++i)
-        stress.labels.push_back(
-          i < dim * dim ? std::string(1, "xyz"[i / dim]) + "xyz"[i % dim] :
-                          std::to_string(i + 1));
+        stress.labels.push_back(i < dim * dim ? std::string(1, "xyz"[i / dim]) +
+                                                  "xyz"[i % dim] :
+                                                std::to_string(i + 1));
       inputs.push_back(stress);
       // '*': a component the check leaves out.
       std::vector<std::string> force = ref.contact_force;
@@ -395,12 +396,12 @@ namespace Signorini
 
   void
   check_numbered_subsections(const std::string &text,
-                             const Counts &     counts,
+                             const Counts      &counts,
                              const std::string &source)
   {
     struct Numbered
     {
-      const char * section, *item, *count_entry;
+      const char  *section, *item, *count_entry;
       unsigned int count;
     };
     const Numbered numbered[] = {
@@ -419,7 +420,8 @@ namespace Signorini
     for (const auto &n : numbered)
       for (unsigned int k = 1; k <= n.count; ++k)
         {
-          const std::string item = std::string(n.item) + " " + std::to_string(k);
+          const std::string item =
+            std::string(n.item) + " " + std::to_string(k);
           if (entered.count(std::string(n.section) + "/" + item))
             continue;
           const std::string range =
@@ -428,8 +430,8 @@ namespace Signorini
                              " " + std::to_string(n.count) + "'";
           throw InputError(
             "subsection '" + std::string(n.section) + "/" + item +
-            "': missing from " + source + ". '" + n.count_entry + "' = " +
-            std::to_string(n.count) + " in subsection '" + n.section +
+            "': missing from " + source + ". '" + n.count_entry +
+            "' = " + std::to_string(n.count) + " in subsection '" + n.section +
             "' asks for " + range +
             ", and a missing one would silently get the default values. Add "
             "'subsection " +
@@ -458,14 +460,14 @@ namespace Signorini
         if (colon == std::string::npos)
           throw InputError(where + "the entry '" + entry +
                            "' has no ':' and value." + format);
-        const std::string name  = Utilities::trim(entry.substr(0, colon));
-        const std::string value = Utilities::trim(entry.substr(colon + 1));
+        const std::string name    = Utilities::trim(entry.substr(0, colon));
+        const std::string value   = Utilities::trim(entry.substr(colon + 1));
         const std::string problem = constant_name_problem(name);
         if (!problem.empty())
           throw InputError(where + problem + ". " + constant_name_rule());
         if (value.empty())
           throw InputError(where + "'" + name + "' has no value." + format);
-        char *       end = nullptr;
+        char        *end = nullptr;
         const double v   = std::strtod(value.c_str(), &end);
         if (*end != '\0' || !std::isfinite(v))
           throw InputError(where + "the value '" + value + "' of '" + name +

@@ -72,17 +72,20 @@ namespace Signorini
   to_point(const std::vector<double> &values, const std::string &where)
   {
     if (values.size() != dim)
-      throw InputError(where + ": expected " + std::to_string(dim) +
-                       " coordinates (Dimension = " + std::to_string(dim) +
-                       ") but got " + std::to_string(values.size()) +
-                       ". Give one number per coordinate, separated by commas.");
+      throw InputError(
+        where + ": expected " + std::to_string(dim) +
+        " coordinates (Dimension = " + std::to_string(dim) + ") but got " +
+        std::to_string(values.size()) +
+        ". Give one number per coordinate, separated by commas.");
     Point<dim> p;
     for (unsigned int d = 0; d < dim; ++d)
       p[d] = values[d];
     return p;
   }
-  template Point<2> to_point<2>(const std::vector<double> &, const std::string &);
-  template Point<3> to_point<3>(const std::vector<double> &, const std::string &);
+  template Point<2>
+  to_point<2>(const std::vector<double> &, const std::string &);
+  template Point<3>
+  to_point<3>(const std::vector<double> &, const std::string &);
 
 
   // ------------------------------------------------------------------ Body
@@ -181,8 +184,8 @@ namespace Signorini
     centre       = to_doubles(prm.get("Centre"));
     radius       = prm.get_double("Radius");
     segment      = segments.value(prm.get("Segment"));
-    length      = prm.get_double("Length");
-    mesh_file   = prm.get("Mesh file");
+    length       = prm.get_double("Length");
+    mesh_file    = prm.get("Mesh file");
     boundary_id_map.clear();
     for (const auto &entry :
          Utilities::split_string_list(prm.get("Boundary id map"), ','))
@@ -199,7 +202,7 @@ namespace Signorini
 
   void
   GeometryParameters::declare_parameters(ParameterHandler &prm,
-                                         const Counts &    counts)
+                                         const Counts     &counts)
   {
     prm.enter_subsection("Geometry");
     prm.declare_entry("Number of bodies",
@@ -252,7 +255,7 @@ namespace Signorini
 
   void
   GeometryParameters::parse_parameters(ParameterHandler &prm,
-                                       const Counts &    counts)
+                                       const Counts     &counts)
   {
     prm.enter_subsection("Geometry");
     global_refinements = prm.get_integer("Global refinements");
@@ -371,13 +374,13 @@ namespace Signorini
   {
     boundary_ids = to_unsigned(prm.get("Boundary id"));
     type         = neumann_types.value(prm.get("Type"));
-    values = split_expressions(prm.get("Values"));
+    values       = split_expressions(prm.get("Values"));
   }
 
 
   void
   BoundaryConditionParameters::declare_parameters(ParameterHandler &prm,
-                                                  const Counts &    counts)
+                                                  const Counts     &counts)
   {
     prm.enter_subsection("Boundary conditions");
     prm.declare_entry("Number of Dirichlet conditions",
@@ -422,11 +425,11 @@ namespace Signorini
 
   void
   BoundaryConditionParameters::parse_parameters(ParameterHandler &prm,
-                                                const Counts &    counts)
+                                                const Counts     &counts)
   {
     prm.enter_subsection("Boundary conditions");
     body_force = split_expressions(prm.get("Body force"));
-    constants = parse_function_constants(prm.get("Function constants"));
+    constants  = parse_function_constants(prm.get("Function constants"));
     dirichlet.resize(counts.n_dirichlet);
     for (unsigned int k = 0; k < counts.n_dirichlet; ++k)
       {
@@ -505,7 +508,7 @@ namespace Signorini
           "subsection 'Load stepping', parameter 'Step times': the times "
           "must be > 0 and strictly increasing; entry " +
           std::to_string(k + 1) + " is not.");
-    max_cuts = prm.get_integer("Maximum step cuts");
+    max_cuts    = prm.get_integer("Maximum step cuts");
     extrapolate = prm.get("Predictor") == "extrapolated";
     prm.leave_subsection();
   }
@@ -573,11 +576,11 @@ namespace Signorini
   NewtonParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Newton");
-    max_iterations     = prm.get_integer("Maximum iterations");
-    relative_tolerance = prm.get_double("Relative tolerance");
-    absolute_tolerance = prm.get_double("Absolute tolerance");
-    check_jacobian     = prm.get_bool("Check Jacobian");
-    line_search_steps  = prm.get_integer("Line search steps");
+    max_iterations             = prm.get_integer("Maximum iterations");
+    relative_tolerance         = prm.get_double("Relative tolerance");
+    absolute_tolerance         = prm.get_double("Absolute tolerance");
+    check_jacobian             = prm.get_bool("Check Jacobian");
+    line_search_steps          = prm.get_integer("Line search steps");
     tolerance_between_pairings = prm.get_double("Tolerance between pairings");
     prm.leave_subsection();
   }
@@ -824,9 +827,8 @@ namespace Signorini
     dimension    = prm.get_integer("Dimension");
     axisymmetric = prm.get_bool("Axisymmetric");
     prm.enter_subsection("Finite element");
-    fe_degree = prm.get_integer("Degree");
-    projected_volumetric_strain =
-      prm.get("Volumetric strain") == "projected";
+    fe_degree                   = prm.get_integer("Degree");
+    projected_volumetric_strain = prm.get("Volumetric strain") == "projected";
     prm.leave_subsection();
     geometry.parse_parameters(prm, counts);
     prm.enter_subsection("Materials");

@@ -2,9 +2,9 @@
 // solution.
 #include <deal.II/base/utilities.h>
 
+#include <signorini/contact/obstacles/interface.h>
 #include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
-#include <signorini/contact/obstacles/interface.h>
 #include <signorini/material/interface.h>
 
 #include "parameters_helpers.h"
@@ -110,22 +110,22 @@ namespace Signorini
   void
   ContactPairParameters::parse_parameters(ParameterHandler &prm)
   {
-    slave_ids  = to_unsigned(prm.get("Slave boundary id"));
-    master_ids = to_unsigned(prm.get("Master boundary id"));
-    master          = prm.get("Master");
+    slave_ids         = to_unsigned(prm.get("Slave boundary id"));
+    master_ids        = to_unsigned(prm.get("Master boundary id"));
+    master            = prm.get("Master");
     obstacle_motion   = split_expressions(prm.get("Obstacle motion"));
     obstacle_rotation = split_expressions(prm.get("Obstacle rotation"));
     rotation_centre   = to_doubles(prm.get("Rotation centre"));
-    friction        = prm.get_double("Friction coefficient");
-    rho_n_factor    = prm.get_double("Normal coefficient");
-    rho_t_factor    = prm.get_double("Tangential coefficient");
-    gap_offset      = prm.get_double("Gap offset");
+    friction          = prm.get_double("Friction coefficient");
+    rho_n_factor      = prm.get_double("Normal coefficient");
+    rho_t_factor      = prm.get_double("Tangential coefficient");
+    gap_offset        = prm.get_double("Gap offset");
   }
 
 
   void
   ContactParameters::declare_parameters(ParameterHandler &prm,
-                                        const Counts &    counts)
+                                        const Counts     &counts)
   {
     prm.enter_subsection("Contact");
     prm.declare_entry("Number of contact pairs",
@@ -191,14 +191,14 @@ namespace Signorini
 
   void
   ContactParameters::parse_parameters(ParameterHandler &prm,
-                                      const Counts &    counts)
+                                      const Counts     &counts)
   {
     prm.enter_subsection("Contact");
-    rule                = integration_rules.value(prm.get("Integration rule"));
-    order               = prm.get_integer("Integration order");
-    initial_status      = initial_statuses.value(prm.get("Initial status"));
-    projection_tolerance     = prm.get_double("Projection tolerance");
-    geometric_tolerance      = prm.get_double("Geometric tolerance");
+    rule                 = integration_rules.value(prm.get("Integration rule"));
+    order                = prm.get_integer("Integration order");
+    initial_status       = initial_statuses.value(prm.get("Initial status"));
+    projection_tolerance = prm.get_double("Projection tolerance");
+    geometric_tolerance  = prm.get_double("Geometric tolerance");
     max_geometric_iterations = prm.get_integer("Maximum geometric iterations");
     pairs.resize(counts.n_pairs);
     for (unsigned int k = 0; k < counts.n_pairs; ++k)
@@ -275,32 +275,35 @@ namespace Signorini
     }
 
 
-    // Friction: force ratio in sliding, force variation, stick zone; displacement values at points.
+    // Friction: force ratio in sliding, force variation, stick zone;
+    // displacement values at points.
     void
     declare_friction_references(ParameterHandler &prm)
     {
-      prm.declare_entry("Friction force ratio",
-                        "0",
-                        Patterns::Double(0),
-                        "Reference for |F_t| / |F_n| of the contact force on "
-                        "the slave of pair 1, F_n its component along 'Friction "
-                        "ratio normal' and F_t the rest (= mu in full sliding); "
-                        "0: not checked.");
+      prm.declare_entry(
+        "Friction force ratio",
+        "0",
+        Patterns::Double(0),
+        "Reference for |F_t| / |F_n| of the contact force on "
+        "the slave of pair 1, F_n its component along 'Friction "
+        "ratio normal' and F_t the rest (= mu in full sliding); "
+        "0: not checked.");
       prm.declare_entry("Friction ratio normal",
                         "0, 1, 0",
                         point_pattern(),
                         "Direction of the normal force for 'Friction force "
                         "ratio' (normalised).");
-      prm.declare_entry("Friction ratio frame",
-                        "global",
-                        Patterns::Selection("global|contact"),
-                        "global: F_n and F_t are the parts of the total contact "
-                        "force along 'Friction ratio normal' and across it "
-                        "(a flat master). contact: F_n = sum of w |f . n| and "
-                        "F_t = sum of w |P f| over the contact points, each in "
-                        "its own contact frame (a curved master, e.g. an "
-                        "ironing die, whose total force also carries the "
-                        "tilted normal pressures).");
+      prm.declare_entry(
+        "Friction ratio frame",
+        "global",
+        Patterns::Selection("global|contact"),
+        "global: F_n and F_t are the parts of the total contact "
+        "force along 'Friction ratio normal' and across it "
+        "(a flat master). contact: F_n = sum of w |f . n| and "
+        "F_t = sum of w |P f| over the contact points, each in "
+        "its own contact frame (a curved master, e.g. an "
+        "ironing die, whose total force also carries the "
+        "tilted normal pressures).");
       prm.declare_entry("Force variation tolerance",
                         "0",
                         Patterns::Double(0),
@@ -314,9 +317,11 @@ namespace Signorini
         "Stick zone",
         "none",
         Patterns::Selection("none|cattaneo-mindlin"),
-        "cattaneo-mindlin: at every step with a tangential force, the half-width "
+        "cattaneo-mindlin: at every step with a tangential force, the "
+        "half-width "
         "c of the stick zone of pair 1 (around 'Contact centre') is checked "
-        "against Cattaneo-Mindlin partial slip under a constant normal force P, "
+        "against Cattaneo-Mindlin partial slip under a constant normal force "
+        "P, "
         "c = a (1 - |Q|/(mu P))^(1/m) while Q grows from 0 (first loading) and "
         "c = a (1 - |Q - Q*|/(2 mu P))^(1/m) after the tangential force Q "
         "turned at Q* (Masing), m = 2 in 2D (cylinder) and 3 in 3D (sphere); a "
@@ -326,17 +331,19 @@ namespace Signorini
         "(closed; stick) and the nearest point outside beyond it. 3D: "
         "area-equivalent radii, a = sqrt(A_closed / pi) and c = "
         "sqrt(A_stick / pi) with A the summed weights of the closed and of the "
-        "stick points. Valid for elastically similar bodies (no coupling of the "
+        "stick points. Valid for elastically similar bodies (no coupling of "
+        "the "
         "normal and tangential problems).");
       prm.declare_entry("Friction ratio from time",
                         "0",
                         Patterns::Double(0),
                         "The friction force ratio is checked at the steps "
                         "with t >= this time (steady sliding).");
-      prm.declare_entry("Friction ratio tolerance",
-                        "0.01",
-                        Patterns::Double(0),
-                        "Relative tolerance of the friction force ratio check.");
+      prm.declare_entry(
+        "Friction ratio tolerance",
+        "0.01",
+        Patterns::Double(0),
+        "Relative tolerance of the friction force ratio check.");
       prm.declare_entry("Point values",
                         "",
                         Patterns::Anything(),
@@ -352,7 +359,8 @@ namespace Signorini
     }
 
 
-    // Facts of every converged state (action = reaction, slip law, gaps) and the total contact force.
+    // Facts of every converged state (action = reaction, slip law, gaps) and
+    // the total contact force.
     void
     declare_law_references(ParameterHandler &prm)
     {
@@ -438,30 +446,30 @@ namespace Signorini
   ReferenceParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Reference solution");
-    displacement = split_expressions(prm.get("Displacement"));
-    stress       = split_expressions(prm.get("Stress"));
-    tolerance    = prm.get_double("Tolerance");
-    max_pressure           = prm.get_double("Maximum contact pressure");
-    pressure_tolerance     = prm.get_double("Pressure tolerance");
-    half_width             = prm.get_double("Contact half-width");
-    contact_centre         = to_doubles(prm.get("Contact centre"));
-    half_width_tolerance   = prm.get_double("Half-width tolerance");
-    contact_pressure       = prm.get("Contact pressure");
-    pressure_l2_tolerance  = prm.get_double("Pressure L2 tolerance");
-    point_value_tolerance  = prm.get_double("Point value tolerance");
-    action_reaction_tolerance = prm.get_double("Action-reaction tolerance");
-    slip_law_tolerance        = prm.get_double("Slip law tolerance");
-    contact_force             = split_expressions(prm.get("Contact force"));
-    contact_force_tolerance   = prm.get_double("Contact force tolerance");
-    contact_force_from        = prm.get_double("Contact force from time");
-    gap_tolerance           = prm.get_double("Gap tolerance");
-    friction_ratio         = prm.get_double("Friction force ratio");
-    friction_ratio_normal  = to_doubles(prm.get("Friction ratio normal"));
-    friction_ratio_tolerance = prm.get_double("Friction ratio tolerance");
-    friction_ratio_from      = prm.get_double("Friction ratio from time");
+    displacement                 = split_expressions(prm.get("Displacement"));
+    stress                       = split_expressions(prm.get("Stress"));
+    tolerance                    = prm.get_double("Tolerance");
+    max_pressure                 = prm.get_double("Maximum contact pressure");
+    pressure_tolerance           = prm.get_double("Pressure tolerance");
+    half_width                   = prm.get_double("Contact half-width");
+    contact_centre               = to_doubles(prm.get("Contact centre"));
+    half_width_tolerance         = prm.get_double("Half-width tolerance");
+    contact_pressure             = prm.get("Contact pressure");
+    pressure_l2_tolerance        = prm.get_double("Pressure L2 tolerance");
+    point_value_tolerance        = prm.get_double("Point value tolerance");
+    action_reaction_tolerance    = prm.get_double("Action-reaction tolerance");
+    slip_law_tolerance           = prm.get_double("Slip law tolerance");
+    contact_force                = split_expressions(prm.get("Contact force"));
+    contact_force_tolerance      = prm.get_double("Contact force tolerance");
+    contact_force_from           = prm.get_double("Contact force from time");
+    gap_tolerance                = prm.get_double("Gap tolerance");
+    friction_ratio               = prm.get_double("Friction force ratio");
+    friction_ratio_normal        = to_doubles(prm.get("Friction ratio normal"));
+    friction_ratio_tolerance     = prm.get_double("Friction ratio tolerance");
+    friction_ratio_from          = prm.get_double("Friction ratio from time");
     friction_ratio_contact_frame = prm.get("Friction ratio frame") == "contact";
-    force_variation_tolerance = prm.get_double("Force variation tolerance");
-    cattaneo_mindlin = prm.get("Stick zone") == "cattaneo-mindlin";
+    force_variation_tolerance    = prm.get_double("Force variation tolerance");
+    cattaneo_mindlin             = prm.get("Stick zone") == "cattaneo-mindlin";
     point_values.clear();
     for (const auto &entry : split_expressions(prm.get("Point values")))
       {

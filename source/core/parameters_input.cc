@@ -2,9 +2,9 @@
 // text.
 #include <deal.II/base/utilities.h>
 
+#include <signorini/contact/obstacles/interface.h>
 #include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
-#include <signorini/contact/obstacles/interface.h>
 #include <signorini/material/interface.h>
 
 #include "parameters_helpers.h"
@@ -139,13 +139,12 @@ namespace Signorini
     std::map<unsigned int, unsigned int> seen;
     for (unsigned int k = 0; k < materials.size(); ++k)
       if (!seen.emplace(materials[k].material_id, k).second)
-        throw InputError("subsection 'Materials/Material " +
-                         std::to_string(k + 1) +
-                         "', parameter 'Material id': id " +
-                         std::to_string(materials[k].material_id) +
-                         " is already used by Material " +
-                         std::to_string(seen[materials[k].material_id] + 1) +
-                         ".");
+        throw InputError(
+          "subsection 'Materials/Material " + std::to_string(k + 1) +
+          "', parameter 'Material id': id " +
+          std::to_string(materials[k].material_id) +
+          " is already used by Material " +
+          std::to_string(seen[materials[k].material_id] + 1) + ".");
     for (unsigned int b = 0; b < geometry.bodies.size(); ++b)
       if (geometry.bodies[b].shape == BodyShape::file &&
           geometry.bodies[b].mesh_file.empty())
@@ -163,7 +162,7 @@ namespace Signorini
   Parameters::check_contact() const
   {
     const unsigned int dim = dimension;
-    const auto &c = contact;
+    const auto        &c   = contact;
     if (c.rule == IntegrationRule::newton_cotes && c.order != 1 &&
         c.order != 2 && c.order != 4 && c.order != 6)
       throw InputError("subsection 'Contact', parameter 'Integration order': "
@@ -188,7 +187,7 @@ namespace Signorini
                        "when 'Contact/Number of contact pairs' > 0.");
     for (unsigned int k = 0; k < c.pairs.size(); ++k)
       {
-        const auto &      p = c.pairs[k];
+        const auto       &p = c.pairs[k];
         const std::string where =
           "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
         if (p.slave_ids.empty())
@@ -240,9 +239,9 @@ namespace Signorini
     // Turn deal.II's parse exception into one message naming line and
     // subsection, with a hint for the cases users hit most.
     std::string
-    explain_parse_error(const ExceptionBase &           e,
-                        const std::string &             text,
-                        const std::string &             source,
+    explain_parse_error(const ExceptionBase            &e,
+                        const std::string              &text,
+                        const std::string              &source,
                         const std::vector<std::string> &origins)
     {
       std::ostringstream info;
@@ -308,9 +307,10 @@ namespace Signorini
           message.find("has not been declared") != std::string::npos ||
           message.find("No such subsection") != std::string::npos ||
           message.find("not been declared") != std::string::npos)
-        hint = " Check the spelling against 'signorini --print-parameters'; "
-               "numbered subsections (Body k, Material k, Dirichlet k, "
-               "Neumann k, Pair k) must not exceed their 'Number of ...' entry.";
+        hint =
+          " Check the spelling against 'signorini --print-parameters'; "
+          "numbered subsections (Body k, Material k, Dirichlet k, "
+          "Neumann k, Pair k) must not exceed their 'Number of ...' entry.";
       else if (message.find("does not match the given pattern") !=
                std::string::npos)
         hint = message.find("named Dimension") != std::string::npos ?
@@ -320,9 +320,9 @@ namespace Signorini
     }
 
     Parameters
-    parse_text(const std::string &             text,
-               const std::string &             source,
-               ParameterHandler &              prm,
+    parse_text(const std::string              &text,
+               const std::string              &source,
+               ParameterHandler               &prm,
                const std::vector<std::string> &origins = {})
     {
       check_parameter_text(text, source);
@@ -406,8 +406,8 @@ namespace Signorini
     // them from the working directory). @p origins gets "file 'f', line n"
     // for every line of the result, for messages.
     std::string
-    expand_includes(const std::string &       text,
-                    const std::string &       filename,
+    expand_includes(const std::string        &text,
+                    const std::string        &filename,
                     std::vector<std::string> &origins,
                     const unsigned int        depth = 0)
     {
@@ -466,11 +466,10 @@ namespace Signorini
     const std::string source = "parameter file '" + filename + "'";
     check_parameter_text(buffer.str(), source);
     std::vector<std::string> origins;
-    const std::string        text =
-      expand_includes(buffer.str(), filename, origins);
-    Parameters parameters = parse_text(text, source, prm, origins);
-    parameters.input_directory = directory_of(filename);
-    parameters.input_file = filename;
+    const std::string text = expand_includes(buffer.str(), filename, origins);
+    Parameters        parameters = parse_text(text, source, prm, origins);
+    parameters.input_directory   = directory_of(filename);
+    parameters.input_file        = filename;
     return parameters;
   }
 

@@ -23,11 +23,13 @@ namespace Signorini
       std::string
       count_list(const std::map<std::string, unsigned long> &counts)
       {
-        std::string text;
+        std::string  text;
         unsigned int i = 0;
         for (const auto &[kind, n] : counts)
           {
-            text += (i == 0 ? "" : i + 1 == counts.size() ? " and " : ", ") +
+            text += (i == 0                 ? "" :
+                     i + 1 == counts.size() ? " and " :
+                                              ", ") +
                     std::to_string(n) + " " + kind;
             ++i;
           }
@@ -40,12 +42,11 @@ namespace Signorini
                    const unsigned int dim,
                    const std::string &how_to_convert)
       {
-        throw InputError(
-          where + ": the mesh has " + found +
-          ". Signorini computes on first-order " +
-          (dim == 2 ? "quadrilaterals" : "hexahedra") +
-          " only (Dimension = " + std::to_string(dim) + "). " +
-          how_to_convert);
+        throw InputError(where + ": the mesh has " + found +
+                         ". Signorini computes on first-order " +
+                         (dim == 2 ? "quadrilaterals" : "hexahedra") +
+                         " only (Dimension = " + std::to_string(dim) + "). " +
+                         how_to_convert);
       }
 
       // What to change in Gmsh: recombine and subdivide simplices, wedges
@@ -96,9 +97,9 @@ namespace Signorini
           {18, "15-node prisms"},
           {19, "13-node pyramids"}};
         const auto it = names.find(type);
-        return it != names.end() ? it->second :
-                                   "elements of Gmsh type " +
-                                     std::to_string(type);
+        return it != names.end() ?
+                 it->second :
+                 "elements of Gmsh type " + std::to_string(type);
       }
 
       // Elements per Gmsh type in an ASCII .msh text (formats 1, 2 and 4);
@@ -196,9 +197,9 @@ namespace Signorini
             // 16, 17) only need first-order elements; anything else also
             // needs recombining.
             higher_order = higher_order || type >= 8;
-            recombine    = recombine || !(type == 3 || type == 5 ||
-                                       type == 8 || type == 10 || type == 12 ||
-                                       type == 16 || type == 17);
+            recombine    = recombine ||
+                        !(type == 3 || type == 5 || type == 8 || type == 10 ||
+                          type == 12 || type == 16 || type == 17);
           }
         const bool hexahedra_in_2d = dim == 2 && all.count(gmsh_type_name(5));
         if (recombine || higher_order || hexahedra_in_2d)
@@ -220,7 +221,7 @@ namespace Signorini
                          const unsigned int dim,
                          const std::string &where)
       {
-        const unsigned int expected = dim == 2 ? 4 : 8;
+        const unsigned int                   expected = dim == 2 ? 4 : 8;
         std::map<std::string, unsigned long> wrong;
         std::istringstream                   in(text);
         std::string                          line, header, element;
@@ -249,9 +250,9 @@ namespace Signorini
             const auto fields = Utilities::split_string_list(element, ',');
             element.clear();
             const unsigned int nodes =
-              std::count_if(fields.begin(), fields.end(), [](const auto &f) {
-                return !f.empty();
-              }) -
+              std::count_if(fields.begin(),
+                            fields.end(),
+                            [](const auto &f) { return !f.empty(); }) -
               1;
             if (nodes != expected)
               ++wrong["elements with " + std::to_string(nodes) +
@@ -284,7 +285,7 @@ namespace Signorini
     template <int dim>
     void
     check_reference_cells(const Triangulation<dim> &tria,
-                          const std::string &       where)
+                          const std::string        &where)
     {
       if (tria.all_reference_cells_are_hyper_cube())
         return;
@@ -317,11 +318,11 @@ namespace Signorini
       for (auto pos = captured.find(key); pos != std::string::npos;
            pos      = captured.find(key, pos + 1))
         {
-          const auto end = captured.find("Stacktrace:", pos);
-          text += " " + captured.substr(pos + key.size(),
+               const auto end = captured.find("Stacktrace:", pos);
+               text += " " + captured.substr(pos + key.size(),
                                         end == std::string::npos ?
-                                          std::string::npos :
-                                          end - pos - key.size());
+                                               std::string::npos :
+                                               end - pos - key.size());
         }
       return Utilities::trim(std::regex_replace(text, std::regex("\\s+"), " "));
     }
@@ -337,8 +338,8 @@ namespace Signorini
                           std::pow(parameters.fe_degree, parameters.dimension) *
                           cells;
       std::ostringstream text;
-      text << std::setprecision(3) << "about " << cells
-           << " cells (about " << dofs
+      text << std::setprecision(3) << "about " << cells << " cells (about "
+           << dofs
            << " displacement DoFs), more than 'Maximum number of cells' = "
            << parameters.geometry.maximum_cells;
       return text.str();
@@ -375,8 +376,7 @@ namespace Signorini
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned() && cell->refine_flag_set())
           ++flagged;
-      flagged =
-        Utilities::MPI::sum(flagged, triangulation.get_communicator());
+      flagged = Utilities::MPI::sum(flagged, triangulation.get_communicator());
       return static_cast<double>(triangulation.n_global_active_cells()) +
              ((1u << dim) - 1) * flagged;
     }
@@ -387,7 +387,7 @@ namespace Signorini
     check_local_refinement(
       const parallel::distributed::Triangulation<dim> &triangulation,
       const unsigned int                               cycle,
-      const Parameters &                               parameters)
+      const Parameters                                &parameters)
     {
       const double n_cells = cells_after_refinement(triangulation);
       if (n_cells > parameters.geometry.maximum_cells)
@@ -408,7 +408,7 @@ namespace Signorini
     void
     add_mesh_parts(const Triangulation<dim> &tria,
                    const unsigned int        body,
-                   std::vector<MeshPart> &   parts)
+                   std::vector<MeshPart>    &parts)
     {
       // Union-find over the vertices: cells sharing a vertex are one part.
       std::vector<unsigned int> parent(tria.n_vertices());
@@ -448,8 +448,7 @@ namespace Signorini
       {
         return "Body " + std::to_string(part.body + 1) +
                (part.n_parts > 1 ? " (part " + std::to_string(part.part + 1) +
-                                     " of the " +
-                                     std::to_string(part.n_parts) +
+                                     " of the " + std::to_string(part.n_parts) +
                                      " unconnected parts of its mesh)" :
                                    "");
       }
@@ -457,12 +456,12 @@ namespace Signorini
 
 
     void
-    check_contact_surfaces(const ContactParameters &    contact,
+    check_contact_surfaces(const ContactParameters     &contact,
                            const std::vector<MeshPart> &parts)
     {
       for (unsigned int k = 0; k < contact.pairs.size(); ++k)
         {
-          const auto &      pair = contact.pairs[k];
+          const auto       &pair = contact.pairs[k];
           const std::string where =
             "subsection 'Contact/Pair " + std::to_string(k + 1) + "'";
           // The parts the slave surface touches, each with a slave id on it.

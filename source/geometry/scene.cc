@@ -12,8 +12,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <memory>
+#include <sstream>
 
 namespace Signorini
 {
@@ -31,12 +31,12 @@ namespace Signorini
       Point<dim>
       point_of(const std::vector<double> &v,
                const unsigned int         b,
-               const std::string &        entry)
+               const std::string         &entry)
       {
         // Entries default to 3 numbers; use the first dim of them.
         if (v.size() < dim)
-          throw InputError(body_name(b) + ", parameter '" + entry +
-                           "': give " + std::to_string(dim) + " coordinates.");
+          throw InputError(body_name(b) + ", parameter '" + entry + "': give " +
+                           std::to_string(dim) + " coordinates.");
         Point<dim> p;
         for (unsigned int d = 0; d < dim; ++d)
           p[d] = v[d];
@@ -52,7 +52,7 @@ namespace Signorini
       void
       check_cells(const Triangulation<dim> &tria,
                   const unsigned int        b,
-                  const BodyParameters &    body)
+                  const BodyParameters     &body)
       {
         for (const auto &cell : tria.active_cell_iterators())
           {
@@ -64,9 +64,10 @@ namespace Signorini
                 Tensor<2, dim> J;
                 for (unsigned int d = 0; d < dim; ++d)
                   {
-                    const unsigned int from = corner & ~(1u << d);
-                    const unsigned int to   = corner | (1u << d);
-                    const Tensor<1, dim> e  = cell->vertex(to) - cell->vertex(from);
+                    const unsigned int   from = corner & ~(1u << d);
+                    const unsigned int   to   = corner | (1u << d);
+                    const Tensor<1, dim> e =
+                      cell->vertex(to) - cell->vertex(from);
                     for (unsigned int r = 0; r < dim; ++r)
                       J[r][d] = e[r];
                   }
@@ -95,13 +96,14 @@ namespace Signorini
       // Gives the faces of a generated shape their user-visible ids.
       template <int dim>
       void
-      assign_boundary_ids(Triangulation<dim> &  tria,
+      assign_boundary_ids(Triangulation<dim>   &tria,
                           const BodyParameters &body,
                           const unsigned int    b,
                           const unsigned int    n_faces)
       {
         if (!body.boundary_ids.empty() && body.boundary_ids.size() < n_faces)
-          throw InputError(body_name(b) + ", parameter 'Boundary ids': this "
+          throw InputError(body_name(b) +
+                           ", parameter 'Boundary ids': this "
                            "shape has " +
                            std::to_string(n_faces) + " face groups, give " +
                            std::to_string(n_faces) +
@@ -174,8 +176,8 @@ namespace Signorini
       void
       build_body(const BodyParameters &body,
                  const unsigned int    b,
-                 const std::string &   input_directory,
-                 Triangulation<dim> &  tria)
+                 const std::string    &input_directory,
+                 Triangulation<dim>   &tria)
       {
         const Point<dim> shift = point_of<dim>(body.shift, b, "Shift");
         switch (body.shape)
@@ -277,7 +279,7 @@ namespace Signorini
                                           body.mesh_file + ")";
                 check_mesh_file_cells(buffer.str(), ext, dim, where);
                 std::istringstream text(buffer.str());
-                GridIn<dim> grid_in;
+                GridIn<dim>        grid_in;
                 grid_in.attach_triangulation(tria);
                 {
                   // The Abaqus reader prints its inner exception (with a
@@ -326,7 +328,7 @@ namespace Signorini
 
     template <int dim>
     void
-    create_mesh(const Parameters &                         parameters,
+    create_mesh(const Parameters                          &parameters,
                 parallel::distributed::Triangulation<dim> &triangulation)
     {
       std::vector<Point<dim>>    vertices;
@@ -336,7 +338,7 @@ namespace Signorini
       std::map<types::manifold_id, std::unique_ptr<Manifold<dim>>> manifolds;
       std::vector<types::manifold_id> volume_manifolds;
 
-      const auto &bodies = parameters.geometry.bodies;
+      const auto           &bodies = parameters.geometry.bodies;
       std::vector<MeshPart> parts; // the bodies, for the contact checks
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
@@ -352,9 +354,9 @@ namespace Signorini
             {
               const types::manifold_id surface = 2 * b + 1, volume = 2 * b + 2;
               body_tria.set_all_manifold_ids(volume);
-              const types::boundary_id curved =
-                bodies[b].boundary_ids.empty() ? 10 * (b + 1) :
-                                                 bodies[b].boundary_ids[0];
+              const types::boundary_id curved = bodies[b].boundary_ids.empty() ?
+                                                  10 * (b + 1) :
+                                                  bodies[b].boundary_ids[0];
               body_tria.set_all_manifold_ids_on_boundary(curved, surface);
               const Point<dim> centre =
                 point_of<dim>(bodies[b].centre, b, "Centre") +
@@ -429,8 +431,7 @@ namespace Signorini
               throw InputError(
                 "subsection 'Geometry', parameter 'Refinement region': "
                 "cannot parse '" +
-                geometry.refinement_region +
-                "'. Give an expression in x, y" +
+                geometry.refinement_region + "'. Give an expression in x, y" +
                 std::string(dim == 3 ? ", z" : "") +
                 " (and 'Function constants'), positive where cells are to be "
                 "refined.");

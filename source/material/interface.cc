@@ -30,7 +30,7 @@ namespace Signorini
       prm.enter_subsection("Materials");
       for (unsigned int k = 0; k < parameters.materials.size(); ++k)
         {
-          const auto &      m     = parameters.materials[k];
+          const auto       &m     = parameters.materials[k];
           const std::string where = "subsection 'Materials/Material " +
                                     std::to_string(k + 1) +
                                     "', parameter 'Model'";

@@ -7,12 +7,12 @@ namespace Signorini
     template <int dim>
     void
     LinearElastic<dim>::evaluate(const SymmetricTensor<2, 3> &strain,
-                                 SymmetricTensor<2, 3> &      stress,
-                                 SymmetricTensor<4, 3> *      tangent) const
+                                 SymmetricTensor<2, 3>       &stress,
+                                 SymmetricTensor<4, 3>       *tangent) const
     {
       const double lambda = this->lambda, mu = this->mu;
-      stress = lambda * trace(strain) * unit_symmetric_tensor<3>() +
-               2 * mu * strain;
+      stress =
+        lambda * trace(strain) * unit_symmetric_tensor<3>() + 2 * mu * strain;
       if (tangent)
         *tangent = lambda * outer_product(unit_symmetric_tensor<3>(),
                                           unit_symmetric_tensor<3>()) +

@@ -101,8 +101,7 @@ namespace Signorini
                       const Point<dim>   &centre,
                       const bool          stick_only)
       {
-        const auto inside = [stick_only](const auto &r)
-        {
+        const auto inside = [stick_only](const auto &r) {
           return stick_only ? r.status == Contact::PointStatus::stick :
                               r.status != Contact::PointStatus::free;
         };
@@ -170,12 +169,12 @@ namespace Signorini
         exact_pressure = parsed<dim>({ref.contact_pressure}, constants);
       std::vector<std::string> force = ref.contact_force;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        force_compared[d] =
-          d >= force.size() || Utilities::trim(force[d]) != "*";
-        if (!force_compared[d])
-          force[d] = "0";
-      }
+        {
+          force_compared[d] =
+            d >= force.size() || Utilities::trim(force[d]) != "*";
+          if (!force_compared[d])
+            force[d] = "0";
+        }
       exact_force = parsed<dim>(force, constants);
     }
 
@@ -396,8 +395,8 @@ namespace Signorini
         for (unsigned int d = 0; d < dim; ++d)
           text += (d ? ", " : "") +
                   (force_compared[d] ?
-                     format(std::abs(v[d]) < 1e-10 * v.norm() ? 0. : v[d], 4) :
-                     std::string("*"));
+                      format(std::abs(v[d]) < 1e-10 * v.norm() ? 0. : v[d], 4) :
+                      std::string("*"));
         return text + ")";
       };
       exact_force->set_time(time);
@@ -465,58 +464,59 @@ namespace Signorini
       const auto &ref    = parameters.reference;
       const auto  checks = contact.law_checks(state);
       for (unsigned int p = 0; p < checks.size(); ++p)
-      {
-        const auto       &c    = checks[p];
-        const std::string pair = "pair " + std::to_string(p + 1);
-        if (ref.action_reaction_tolerance > 0)
         {
-          // An open pair (both forces round-off) is measured against
-          // the force level of the step.
-          const double scale = std::max({c.force_rows.norm(),
-                                         c.force_multipliers.norm(),
-                                         1e-6 * force_level});
-          const double e =
-            scale > 0 ? (c.force_rows - c.force_multipliers).norm() / scale :
-                        0.;
-          results.push_back(
-            checked("action = reaction, " + pair,
-                    e,
-                    ref.action_reaction_tolerance,
-                    e <= ref.action_reaction_tolerance,
-                    "action = reaction, " + pair +
-                      ": force on the master from the displacement rows " +
-                      vector_text(c.force_rows, scale) +
-                      ", from the multipliers " +
-                      vector_text(c.force_multipliers, scale) +
-                      ", relative difference " + format(e, 2) + " (tolerance " +
-                      format(ref.action_reaction_tolerance, 1)));
+          const auto       &c    = checks[p];
+          const std::string pair = "pair " + std::to_string(p + 1);
+          if (ref.action_reaction_tolerance > 0)
+            {
+              // An open pair (both forces round-off) is measured against
+              // the force level of the step.
+              const double scale = std::max({c.force_rows.norm(),
+                                             c.force_multipliers.norm(),
+                                             1e-6 * force_level});
+              const double e =
+                scale > 0 ?
+                  (c.force_rows - c.force_multipliers).norm() / scale :
+                  0.;
+              results.push_back(checked(
+                "action = reaction, " + pair,
+                e,
+                ref.action_reaction_tolerance,
+                e <= ref.action_reaction_tolerance,
+                "action = reaction, " + pair +
+                  ": force on the master from the displacement rows " +
+                  vector_text(c.force_rows, scale) + ", from the multipliers " +
+                  vector_text(c.force_multipliers, scale) +
+                  ", relative difference " + format(e, 2) + " (tolerance " +
+                  format(ref.action_reaction_tolerance, 1)));
+            }
+          if (ref.slip_law_tolerance == 0 ||
+              parameters.contact.pairs[p].friction == 0)
+            continue;
+          const char *where = c.by_node ? "node" : "point";
+          if (c.n_slipping == 0)
+            {
+              results.push_back(
+                not_checked("slip law, " + pair,
+                            "slip law, " + pair + ": no " + where +
+                              " slips at this step (not checked)"));
+              continue;
+            }
+          const bool pass = c.n_opposed == c.n_slipping &&
+                            c.max_deviation <= ref.slip_law_tolerance;
+          std::ostringstream text;
+          text << "slip law, " << pair << ": friction against the slip at "
+               << c.n_opposed << " of " << c.n_slipping << " slipping " << where
+               << "s (smallest cosine " << std::fixed << std::setprecision(4)
+               << c.min_cosine << "), |f_t| = mu |f_n| to "
+               << format(c.max_deviation, 2) << " (tolerance "
+               << format(ref.slip_law_tolerance, 1);
+          results.push_back(checked("slip law, " + pair,
+                                    c.max_deviation,
+                                    ref.slip_law_tolerance,
+                                    pass,
+                                    text.str()));
         }
-        if (ref.slip_law_tolerance == 0 ||
-            parameters.contact.pairs[p].friction == 0)
-          continue;
-        const char *where = c.by_node ? "node" : "point";
-        if (c.n_slipping == 0)
-        {
-          results.push_back(not_checked("slip law, " + pair,
-                                        "slip law, " + pair + ": no " + where +
-                                          " slips at this step (not checked)"));
-          continue;
-        }
-        const bool pass = c.n_opposed == c.n_slipping &&
-                          c.max_deviation <= ref.slip_law_tolerance;
-        std::ostringstream text;
-        text << "slip law, " << pair << ": friction against the slip at "
-             << c.n_opposed << " of " << c.n_slipping << " slipping " << where
-             << "s (smallest cosine " << std::fixed << std::setprecision(4)
-             << c.min_cosine << "), |f_t| = mu |f_n| to "
-             << format(c.max_deviation, 2) << " (tolerance "
-             << format(ref.slip_law_tolerance, 1);
-        results.push_back(checked("slip law, " + pair,
-                                  c.max_deviation,
-                                  ref.slip_law_tolerance,
-                                  pass,
-                                  text.str()));
-      }
     }
 
 
@@ -540,13 +540,13 @@ namespace Signorini
       const double         P   = std::abs(F * n);
       const Tensor<1, dim> F_t = F - (F * n) * n;
       if (mu == 0 || P == 0)
-      {
-        results.push_back(not_checked(
-          "stick zone",
-          std::string("stick zone: not checked (") +
-            (mu == 0 ? "pair 1 is frictionless" : "no normal force") + ")"));
-        return;
-      }
+        {
+          results.push_back(not_checked(
+            "stick zone",
+            std::string("stick zone: not checked (") +
+              (mu == 0 ? "pair 1 is frictionless" : "no normal force") + ")"));
+          return;
+        }
       // A tangential force below 1e-4 mu P is no tangential load: it moves
       // c by less than 1e-4 a, and a symmetric pressing step can leave
       // one of about 5e-7 P that depends on round-off (anti-cycling
@@ -555,36 +555,36 @@ namespace Signorini
       // The tangent: across n in 2D, the first tangential force's
       // direction in 3D.
       if (mindlin_tangent.norm() == 0)
-      {
-        if (dim == 2)
         {
-          mindlin_tangent[0] = n[1];
-          mindlin_tangent[1] = -n[0];
+          if (dim == 2)
+            {
+              mindlin_tangent[0] = n[1];
+              mindlin_tangent[1] = -n[0];
+            }
+          else if (F_t.norm() > small)
+            mindlin_tangent = F_t / F_t.norm();
         }
-        else if (F_t.norm() > small)
-          mindlin_tangent = F_t / F_t.norm();
-      }
       const double Q = F * mindlin_tangent;
       if (mindlin_direction == 0 && std::abs(Q) > small)
         mindlin_direction = Q > 0 ? 1 : -1;
       else if (mindlin_direction != 0 &&
                (Q - mindlin_q_last) * mindlin_direction < -small)
-      {
-        mindlin_q_turn    = mindlin_q_last;
-        mindlin_turned    = true;
-        mindlin_direction = -mindlin_direction;
-      }
+        {
+          mindlin_q_turn    = mindlin_q_last;
+          mindlin_turned    = true;
+          mindlin_direction = -mindlin_direction;
+        }
       mindlin_q_last = Q;
       // Before the tangential load the theory (c = a) is not what this
       // check measures: points that close within a pressing step carry a
       // slip increment (doc/robustness.md, "Slip ring under a normal load").
       if (mindlin_direction == 0)
-      {
-        results.push_back(
-          not_checked("stick zone",
-                      "stick zone: no tangential force yet (not checked)"));
-        return;
-      }
+        {
+          results.push_back(
+            not_checked("stick zone",
+                        "stick zone: no tangential force yet (not checked)"));
+          return;
+        }
       const double     load   = mindlin_turned ?
                                   std::abs(Q - mindlin_q_turn) / (2 * mu * P) :
                                   std::abs(Q) / (mu * P);

@@ -77,7 +77,7 @@ namespace Signorini
 
 
     std::string
-    write_atomically(const std::string &                        filename,
+    write_atomically(const std::string                         &filename,
                      const std::function<void(std::ostream &)> &write)
     {
       // In the same directory: a rename across file systems is a copy.
@@ -206,7 +206,7 @@ namespace Signorini
         "(solution_[0-9]+\\.[0-9]+\\.vtu|solution_[0-9]+\\.pvtu|"
         "solution\\.pvd|contact_[0-9]+\\.csv|statistics\\.csv|"
         "newton_history\\.csv)(\\.tmp)?|parameters(\\.echo)?\\.prm\\.tmp");
-      namespace fs = std::filesystem;
+      namespace fs                     = std::filesystem;
       unsigned int           n_removed = 0;
       std::error_code        error;
       fs::directory_iterator entry(directory, error), end;

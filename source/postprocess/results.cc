@@ -85,9 +85,9 @@ namespace Signorini
     template <int dim>
     void
     Results<dim>::write(const unsigned int step,
-                            const double       time,
-                            const unsigned int iterations,
-                            const double       force_level)
+                        const double       time,
+                        const unsigned int iterations,
+                        const double       force_level)
     {
       force_scale = force_level;
       compute_reactions();
@@ -148,7 +148,7 @@ namespace Signorini
     template <int dim>
     double
     Results<dim>::point_value(const Point<dim>  &p,
-                                  const unsigned int component) const
+                              const unsigned int component) const
     {
       double value = 0;
       bool   found = false;
@@ -196,8 +196,7 @@ namespace Signorini
     // their checks of the step go to step_checks.
     template <int dim>
     void
-    Results<dim>::run_postprocessors(const unsigned int step,
-                                         const double       time)
+    Results<dim>::run_postprocessors(const unsigned int step, const double time)
     {
       TimerOutput::Scope  t(timer, "output");
       const StepData<dim> data{step,
@@ -232,8 +231,8 @@ namespace Signorini
     template <int dim>
     std::string
     Results<dim>::report_step(const unsigned int step,
-                                  const double       time,
-                                  const unsigned int newton_iterations)
+                              const double       time,
+                              const unsigned int newton_iterations)
     {
       // Largest displacement magnitude at the nodes.
       double u_max = 0;

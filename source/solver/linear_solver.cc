@@ -22,8 +22,9 @@ namespace Signorini
   {
     template <int dim>
     LinearSolver<dim>::LinearSolver(const LinearSolverParameters &parameters)
-      : parameters(parameters)
-    {}
+        : parameters(parameters)
+    {
+    }
 
     template <int dim>
     LinearSolver<dim>::~LinearSolver() = default;
@@ -31,9 +32,9 @@ namespace Signorini
 
     template <int dim>
     void
-    LinearSolver<dim>::set_null_space(const Mapping<dim> &    mapping,
+    LinearSolver<dim>::set_null_space(const Mapping<dim>    &mapping,
                                       const DoFHandler<dim> &dof_handler,
-                                      const IndexSet &       locally_owned)
+                                      const IndexSet        &locally_owned)
     {
       owned = locally_owned;
       if (parameters.type == LinearSolverType::direct)
@@ -44,7 +45,7 @@ namespace Signorini
 
       // Support points and component of every locally owned displacement
       // DoF: the rigid-body motions evaluated there.
-      const auto &fe = dof_handler.get_fe();
+      const auto                    &fe          = dof_handler.get_fe();
       const std::vector<Point<dim>> &unit_points = fe.get_unit_support_points();
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
       for (const auto &cell : dof_handler.active_cell_iterators())
@@ -78,7 +79,7 @@ namespace Signorini
 
     template <int dim>
     void
-    LinearSolver<dim>::initialize_amg(TrilinosWrappers::PreconditionAMG &amg,
+    LinearSolver<dim>::initialize_amg(TrilinosWrappers::PreconditionAMG    &amg,
                                       const TrilinosWrappers::SparseMatrix &A)
     {
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
@@ -99,8 +100,9 @@ namespace Signorini
                              "after setting up the system."));
       for (unsigned int m = 0; m < modes.size(); ++m)
         for (unsigned int k = 0; k < owned.n_elements(); ++k)
-          (*null_space)[m][map.LID(static_cast<int>(
-            owned.nth_index_in_set(k)))] = modes[m][k];
+          (*null_space)[m]
+                       [map.LID(static_cast<int>(owned.nth_index_in_set(k)))] =
+                         modes[m][k];
       ml_list.set("null space: type", "pre-computed");
       ml_list.set("null space: dimension", null_space->NumVectors());
       ml_list.set("null space: vectors", null_space->Values());
@@ -133,9 +135,9 @@ namespace Signorini
                     const types::global_dof_index         row_end,
                     const types::global_dof_index         col_begin,
                     const types::global_dof_index         col_end,
-                    const IndexSet &                      rows,
-                    const IndexSet &                      cols,
-                    TrilinosWrappers::SparseMatrix &      block,
+                    const IndexSet                       &rows,
+                    const IndexSet                       &cols,
+                    TrilinosWrappers::SparseMatrix       &block,
                     const MPI_Comm                        comm)
       {
         // Raw Epetra row views: local rows, local column ids.
@@ -151,7 +153,7 @@ namespace Signorini
               continue;
             int     n;
             double *v;
-            int *   c;
+            int    *c;
             E.ExtractMyRowView(lr, n, v, c);
             row_ids.push_back(r - row_begin);
             columns.emplace_back();
@@ -182,26 +184,27 @@ namespace Signorini
       {
       public:
         BlockPreconditioner(const TrilinosWrappers::PreconditionAMG &amg,
-                            const TrilinosWrappers::SparseMatrix &   C,
-                            TrilinosWrappers::SolverDirect &         schur,
-                            const IndexSet &                         owned_u,
-                            const IndexSet &                         owned_m,
+                            const TrilinosWrappers::SparseMatrix    &C,
+                            TrilinosWrappers::SolverDirect          &schur,
+                            const IndexSet                          &owned_u,
+                            const IndexSet                          &owned_m,
                             const types::global_dof_index            n_u,
                             const MPI_Comm                           comm)
-          : amg(amg)
-          , C(C)
-          , schur(schur)
-          , owned_u(owned_u)
-          , owned_m(owned_m)
-          , n_u(n_u)
-          , f(owned_u, comm)
-          , y(owned_u, comm)
-          , g(owned_m, comm)
-          , z(owned_m, comm)
-        {}
+            : amg(amg)
+            , C(C)
+            , schur(schur)
+            , owned_u(owned_u)
+            , owned_m(owned_m)
+            , n_u(n_u)
+            , f(owned_u, comm)
+            , y(owned_u, comm)
+            , g(owned_m, comm)
+            , z(owned_m, comm)
+        {
+        }
 
         void
-        vmult(TrilinosWrappers::MPI::Vector &      dst,
+        vmult(TrilinosWrappers::MPI::Vector       &dst,
               const TrilinosWrappers::MPI::Vector &src) const
         {
           for (const auto i : owned_u)
@@ -222,9 +225,9 @@ namespace Signorini
 
       private:
         const TrilinosWrappers::PreconditionAMG &amg;
-        const TrilinosWrappers::SparseMatrix &   C;
-        TrilinosWrappers::SolverDirect &         schur;
-        const IndexSet &                         owned_u, &owned_m;
+        const TrilinosWrappers::SparseMatrix    &C;
+        TrilinosWrappers::SolverDirect          &schur;
+        const IndexSet                          &owned_u, &owned_m;
         const types::global_dof_index            n_u;
         mutable TrilinosWrappers::MPI::Vector    f, y, g, z;
       };
@@ -234,8 +237,8 @@ namespace Signorini
     template <int dim>
     unsigned int
     LinearSolver<dim>::solve_blocks(const TrilinosWrappers::SparseMatrix &M,
-                                    TrilinosWrappers::MPI::Vector &       x,
-                                    const TrilinosWrappers::MPI::Vector & b)
+                                    TrilinosWrappers::MPI::Vector        &x,
+                                    const TrilinosWrappers::MPI::Vector  &b)
     {
       const MPI_Comm comm = M.get_mpi_communicator();
       const auto     n    = M.m();
@@ -315,8 +318,8 @@ namespace Signorini
     template <int dim>
     void
     LinearSolver<dim>::solve_direct(const TrilinosWrappers::SparseMatrix &A,
-                                    TrilinosWrappers::MPI::Vector &       x,
-                                    const TrilinosWrappers::MPI::Vector &b)
+                                    TrilinosWrappers::MPI::Vector        &x,
+                                    const TrilinosWrappers::MPI::Vector  &b)
     {
       const auto analyse = [&]() {
         pattern_changed();
@@ -367,8 +370,8 @@ namespace Signorini
     template <int dim>
     unsigned int
     LinearSolver<dim>::solve(const TrilinosWrappers::SparseMatrix &A,
-                             TrilinosWrappers::MPI::Vector &       x,
-                             const TrilinosWrappers::MPI::Vector & b)
+                             TrilinosWrappers::MPI::Vector        &x,
+                             const TrilinosWrappers::MPI::Vector  &b)
     {
       if (parameters.type == LinearSolverType::direct)
         {

@@ -8,14 +8,15 @@ namespace Signorini
   {
     LoadStepper::LoadStepper(const unsigned int        max_cuts,
                              const ConditionalOStream &out)
-      : max_cuts(max_cuts)
-      , out(out)
-    {}
+        : max_cuts(max_cuts)
+        , out(out)
+    {
+    }
 
 
     bool
     LoadStepper::advance(QuasiStaticProblem &problem,
-                         StepProgress &      progress,
+                         StepProgress       &progress,
                          const double        t_end) const
     {
       double t_target = t_end;

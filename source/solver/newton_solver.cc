@@ -47,7 +47,7 @@ namespace Signorini
       std::pair<NewtonFailure, std::string>
       failure_reason(const std::vector<double> &r,
                      const unsigned int         n_changed,
-                     const std::string &        free_motions,
+                     const std::string         &free_motions,
                      const unsigned int         max_iterations)
       {
         std::ostringstream s;
@@ -57,8 +57,7 @@ namespace Signorini
         // the few iterates before it.
         const std::size_t n = r.size(), k = std::max<std::size_t>(3, n / 4);
         const bool        stalled =
-          n > k &&
-          last > 0.5 * *std::min_element(r.end() - k - 1, r.end() - 1);
+          n > k && last > 0.5 * *std::min_element(r.end() - k - 1, r.end() - 1);
         NewtonFailure kind = NewtonFailure::iteration_limit;
         if (n_changed > 0)
           {
@@ -95,13 +94,14 @@ namespace Signorini
     }
 
 
-    NewtonSolver::NewtonSolver(const Parameters &        parameters,
+    NewtonSolver::NewtonSolver(const Parameters         &parameters,
                                const ConditionalOStream &out,
-                               TimerOutput &             timer)
-      : parameters(parameters)
-      , out(out)
-      , timer(timer)
-    {}
+                               TimerOutput              &timer)
+        : parameters(parameters)
+        , out(out)
+        , timer(timer)
+    {
+    }
 
 
     // The iteration: evaluate (the trial of the last full update first,
@@ -109,7 +109,7 @@ namespace Signorini
     // release frozen statuses or solve and update.
     NewtonSolver::Result
     NewtonSolver::solve(NonlinearProblem &problem,
-                        double &          force_level,
+                        double           &force_level,
                         const double      tolerance) const
     {
       Result result;
@@ -124,8 +124,8 @@ namespace Signorini
       TrilinosWrappers::MPI::Vector search_base, search_update;
       double                        search_residual = 0;
       std::string                   held_motions;
-      std::vector<double> residuals; // relative, per iterate
-      Evaluation          evaluation;
+      std::vector<double>           residuals; // relative, per iterate
+      Evaluation                    evaluation;
       for (unsigned int it = 0; it <= parameters.max_iterations; ++it)
         {
           result.iterations = it;
@@ -158,7 +158,7 @@ namespace Signorini
                 }
             }
           const double residual = norm_of(evaluation.block);
-          force_level = std::max(force_level, evaluation.force);
+          force_level           = std::max(force_level, evaluation.force);
           const Verdict verdict = judge(evaluation,
                                         residual,
                                         force_level,
@@ -167,7 +167,9 @@ namespace Signorini
                                         step_exact,
                                         settled_before,
                                         residual_before);
-          problem.record_iterate(it, evaluation, force_level,
+          problem.record_iterate(it,
+                                 evaluation,
+                                 force_level,
                                  verdict.converged);
           if (!std::isfinite(residual))
             {
@@ -199,8 +201,8 @@ namespace Signorini
               problem.release_contradicted();
               continue; // evaluate the same iterate again
             }
-          LinearisedStep step = problem.solve_linearised(it);
-          held_motions        = step.held_motions;
+          LinearisedStep step                 = problem.solve_linearised(it);
+          held_motions                        = step.held_motions;
           TrilinosWrappers::MPI::Vector owned = problem.iterate();
           if (parameters.line_search_steps > 0)
             {
@@ -225,14 +227,14 @@ namespace Signorini
     // Converged: every block small against the force level (or at the
     // round-off floor once Newton can do no more) and no status changed.
     NewtonSolver::Verdict
-    NewtonSolver::judge(const Evaluation & evaluation,
+    NewtonSolver::judge(const Evaluation  &evaluation,
                         const double       residual,
                         const double       force_level,
                         const double       tolerance,
                         const unsigned int iteration,
                         const bool         step_exact,
-                        bool &             settled_before,
-                        double &           residual_before) const
+                        bool              &settled_before,
+                        double            &residual_before) const
     {
       const auto  &block = evaluation.block;
       const double relative_tolerance =
@@ -257,15 +259,14 @@ namespace Signorini
       const double bulk_floor    = floor_factor * evaluation.bulk_roundoff;
       const double contact_floor = floor_factor * evaluation.contact_roundoff;
       Verdict      verdict;
-      verdict.floor              = std::hypot(bulk_floor, contact_floor);
+      verdict.floor               = std::hypot(bulk_floor, contact_floor);
       const bool statuses_settled = evaluation.n_changed == 0;
       const bool stagnated        = iteration >= 1 && statuses_settled &&
-                             settled_before &&
-                             residual > 0.5 * residual_before;
+                             settled_before && residual > 0.5 * residual_before;
       settled_before  = statuses_settled;
       residual_before = residual;
-      const bool exact_step = step_exact && statuses_settled &&
-                              evaluation.linear_at_fixed_statuses;
+      const bool exact_step =
+        step_exact && statuses_settled && evaluation.linear_at_fixed_statuses;
       const bool at_floor =
         residual <= verdict.floor && (stagnated || exact_step);
       verdict.at_exact_floor = at_floor && exact_step;
@@ -287,8 +288,8 @@ namespace Signorini
             << std::endl;
       // A frozen status (anti-cycling) that the plain law contradicts at
       // the converged iterate is released; Newton goes on from there.
-      verdict.release = residual_small && statuses_settled &&
-                        evaluation.frozen_contradicted;
+      verdict.release =
+        residual_small && statuses_settled && evaluation.frozen_contradicted;
       verdict.converged =
         residual_small && statuses_settled && !verdict.release;
       return verdict;
@@ -301,16 +302,16 @@ namespace Signorini
     // update). Each trial is an evaluation outside the status history; the
     // problem is left as it was on entry.
     double
-    NewtonSolver::line_search(NonlinearProblem &                   problem,
+    NewtonSolver::line_search(NonlinearProblem                    &problem,
                               const TrilinosWrappers::MPI::Vector &base,
                               const TrilinosWrappers::MPI::Vector &update,
-                              const double residual_now,
+                              const double                         residual_now,
                               const double residual_full,
-                              Result &     result) const
+                              Result      &result) const
     {
       TimerOutput::Scope t(timer, "line search");
-      const auto saved = problem.save();
-      double     best = residual_full, best_alpha = 1, alpha = 1;
+      const auto         saved = problem.save();
+      double             best = residual_full, best_alpha = 1, alpha = 1;
       for (unsigned int k = 1; k <= parameters.line_search_steps; ++k)
         {
           alpha *= 0.5;

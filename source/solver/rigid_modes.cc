@@ -23,8 +23,8 @@ namespace Signorini
     double
     rigid_mode_value(const unsigned int m,
                      const unsigned int c,
-                     const Point<dim> & x,
-                     const Point<dim> & centre)
+                     const Point<dim>  &x,
+                     const Point<dim>  &centre)
     {
       if (m < dim)
         return c == m ? 1. : 0.;
@@ -70,7 +70,7 @@ namespace Signorini
         for (auto cell = tria.begin(0); cell != tria.end(0); ++cell)
           for (const unsigned int v : cell->vertex_indices())
             parent[root(cell->vertex_index(v))] = root(cell->vertex_index(0));
-        std::vector<unsigned int> part(tria.n_cells(0));
+        std::vector<unsigned int>            part(tria.n_cells(0));
         std::map<unsigned int, unsigned int> number;
         for (auto cell = tria.begin(0); cell != tria.end(0); ++cell)
           part[cell->index()] =
@@ -114,16 +114,16 @@ namespace Signorini
 
     template <int dim>
     void
-    RigidModes<dim>::setup(const Mapping<dim> &             mapping,
-                           const DoFHandler<dim> &          dof_handler,
+    RigidModes<dim>::setup(const Mapping<dim>              &mapping,
+                           const DoFHandler<dim>           &dof_handler,
                            const AffineConstraints<double> &constraints,
-                           const IndexSet &                 owned_system,
+                           const IndexSet                  &owned_system,
                            const bool                       axisymmetric,
                            const MPI_Comm                   comm_)
     {
-      comm  = comm_;
-      owned = owned_system;
-      const auto &tria = dof_handler.get_triangulation();
+      comm                 = comm_;
+      owned                = owned_system;
+      const auto  &tria    = dof_handler.get_triangulation();
       unsigned int n_parts = 0;
       const auto   part    = coarse_parts(tria, n_parts);
 
@@ -131,7 +131,7 @@ namespace Signorini
       // bodies pressed together hold each other, not their joint motion).
       const unsigned int n_bodies = n_parts > 1 ? n_parts + 1 : 1;
       bodies.assign(n_bodies, Body());
-      std::vector<unsigned int> n_vertices(n_bodies, 0);
+      std::vector<unsigned int>           n_vertices(n_bodies, 0);
       std::vector<std::set<unsigned int>> vertices(n_bodies);
       for (auto cell = tria.begin(0); cell != tria.end(0); ++cell)
         for (const unsigned int b : {part[cell->index()], n_bodies - 1})
@@ -155,10 +155,10 @@ namespace Signorini
           modes.push_back(m);
       n_modes = modes.size();
 
-      const auto &                         fe = dof_handler.get_fe();
+      const auto                          &fe = dof_handler.get_fe();
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-      std::vector<std::vector<Candidate>>  best(
-        n_bodies, std::vector<Candidate>(n_modes));
+      std::vector<std::vector<Candidate>>  best(n_bodies,
+                                               std::vector<Candidate>(n_modes));
       for (auto &body : bodies)
         {
           body.modes.resize(n_modes);
@@ -182,8 +182,9 @@ namespace Signorini
                   constraints.get_constraint_entries(dofs[i]);
                 if (entries != nullptr && !entries->empty())
                   continue; // hanging: follows its parents
-                const Point<dim> x = mapping.transform_unit_to_real_cell(
-                  cell, fe.unit_support_point(i));
+                const Point<dim> x =
+                  mapping.transform_unit_to_real_cell(cell,
+                                                      fe.unit_support_point(i));
                 for (const unsigned int b : {part[coarse], n_bodies - 1})
                   for (unsigned int k = 0; k < n_modes; ++k)
                     {
@@ -193,10 +194,10 @@ namespace Signorini
                       if (constraints.is_constrained(dofs[i]))
                         continue; // a pin there would hold nothing
                       Candidate candidate;
-                      candidate.value = std::abs(t);
-                      candidate.x0 = x[0];
-                      candidate.x1 = x[1];
-                      candidate.x2 = dim == 3 ? x[dim - 1] : 0.;
+                      candidate.value     = std::abs(t);
+                      candidate.x0        = x[0];
+                      candidate.x1        = x[1];
+                      candidate.x2        = dim == 3 ? x[dim - 1] : 0.;
                       candidate.component = c;
                       candidate.dof       = dofs[i];
                       if (candidate.better_than(best[b][k]))
@@ -236,9 +237,9 @@ namespace Signorini
         {
           const auto row = static_cast<types::global_dof_index>(
             TrilinosWrappers::global_row_index(A, r));
-          int        n   = 0;
-          double *   values;
-          int *      columns;
+          int     n = 0;
+          double *values;
+          int    *columns;
           A.ExtractMyRowView(r, n, values, columns);
           for (int k = 0; k < n; ++k)
             {
@@ -283,8 +284,8 @@ namespace Signorini
             for (const auto row : owned)
               (row < n_u ? r_u : r_m) =
                 std::max(row < n_u ? r_u : r_m, std::abs(Kt[row]));
-            r_u               = Utilities::MPI::max(r_u, comm);
-            r_m               = Utilities::MPI::max(r_m, comm);
+            r_u                = Utilities::MPI::max(r_u, comm);
+            r_m                = Utilities::MPI::max(r_m, comm);
             const double t_max = t.linfty_norm();
             if (t_max == 0)
               continue;
@@ -299,7 +300,7 @@ namespace Signorini
     void
     RigidModes<dim>::hold(TrilinosWrappers::SparseMatrix &K,
                           const types::global_dof_index   n_u,
-                          const std::vector<Motion> &     motions) const
+                          const std::vector<Motion>      &motions) const
     {
       const double scale_u = scales(K, n_u).first;
       for (const auto &m : motions)
@@ -317,13 +318,12 @@ namespace Signorini
     RigidModes<dim>::describe(const Motion &motion) const
     {
       std::ostringstream text;
-      const auto &       body = bodies[motion.body];
+      const auto        &body = bodies[motion.body];
       if (bodies.size() > 1 && motion.body + 1 == bodies.size())
         text << "all bodies together";
       else
         {
-          text << "the body of material " << int(body.material)
-               << " (centre (";
+          text << "the body of material " << int(body.material) << " (centre (";
           for (unsigned int d = 0; d < dim; ++d)
             text << (d ? ", " : "") << std::setprecision(4) << body.centroid[d];
           text << "))";

@@ -26,22 +26,22 @@ namespace Signorini
       const double           *xv  = x.trilinos_vector()[0];
       double                  sum = 0;
       for (int r = 0; r < A.NumMyRows(); ++r)
-      {
-        int     n = 0;
-        double *values;
-        int    *columns;
-        A.ExtractMyRowView(r, n, values, columns);
-        double row = 0;
-        for (int k = 0; k < n; ++k)
         {
-          const auto column =
-            TrilinosWrappers::global_column_index(A, columns[k]);
-          const int local = map.LID(static_cast<int>(column));
-          if (local >= 0)
-            row += std::abs(values[k] * xv[local]);
+          int     n = 0;
+          double *values;
+          int    *columns;
+          A.ExtractMyRowView(r, n, values, columns);
+          double row = 0;
+          for (int k = 0; k < n; ++k)
+            {
+              const auto column =
+                TrilinosWrappers::global_column_index(A, columns[k]);
+              const int local = map.LID(static_cast<int>(column));
+              if (local >= 0)
+                row += std::abs(values[k] * xv[local]);
+            }
+          sum += row * row;
         }
-        sum += row * row;
-      }
       return std::sqrt(Utilities::MPI::sum(sum, comm));
     }
   } // namespace Solver

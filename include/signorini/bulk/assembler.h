@@ -48,7 +48,7 @@ namespace Signorini
     SymmetricTensor<2, 3>
     point_strain(const SymmetricTensor<2, dim> &strain,
                  const double                   strain_33,
-                 const double *                 theta_bar = nullptr)
+                 const double                  *theta_bar = nullptr)
     {
       SymmetricTensor<2, 3> e = Material::to_3d<dim>(strain, strain_33);
       if (theta_bar)
@@ -63,12 +63,13 @@ namespace Signorini
       /** @p neumann: one function per Neumann condition of @p parameters;
        * @p body_force: dim components. Functions are evaluated at the time
        * they are set to. */
-      Assembler(const Parameters &                                parameters,
-                const Mapping<dim> &                              mapping,
-                const FESystem<dim> &                             fe,
-                const Materials<dim> &                            materials,
-                const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
-                const FunctionParser<dim> &body_force);
+      Assembler(
+        const Parameters                                        &parameters,
+        const Mapping<dim>                                      &mapping,
+        const FESystem<dim>                                     &fe,
+        const Materials<dim>                                    &materials,
+        const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
+        const FunctionParser<dim>                               &body_force);
 
       /**
        * Adds F_ext - F_int of @p solution (ghosted) into @p rhs and the
@@ -77,13 +78,13 @@ namespace Signorini
        * constraints: the reactions are their sums at the Dirichlet DoFs).
        */
       void
-      assemble(const DoFHandler<dim> &              dof_handler,
+      assemble(const DoFHandler<dim>               &dof_handler,
                const TrilinosWrappers::MPI::Vector &solution,
-               const AffineConstraints<double> &    constraints,
-               TrilinosWrappers::SparseMatrix *     matrix,
-               TrilinosWrappers::MPI::Vector &      rhs,
-               TrilinosWrappers::MPI::Vector &      internal_force,
-               TrilinosWrappers::MPI::Vector &      external_force) const;
+               const AffineConstraints<double>     &constraints,
+               TrilinosWrappers::SparseMatrix      *matrix,
+               TrilinosWrappers::MPI::Vector       &rhs,
+               TrilinosWrappers::MPI::Vector       &internal_force,
+               TrilinosWrappers::MPI::Vector       &external_force) const;
 
     private:
       /** Neumann tractions of the boundary faces of @p cell into
@@ -91,14 +92,14 @@ namespace Signorini
       void
       add_neumann(const typename DoFHandler<dim>::active_cell_iterator &cell,
                   FEFaceValues<dim> &fe_face_values,
-                  Vector<double> &   cell_fext) const;
+                  Vector<double>    &cell_fext) const;
 
-      const Parameters &                                       parameters;
-      const Mapping<dim> &                                     mapping;
-      const FESystem<dim> &                                    fe;
-      const Materials<dim> &                                   materials;
+      const Parameters                                        &parameters;
+      const Mapping<dim>                                      &mapping;
+      const FESystem<dim>                                     &fe;
+      const Materials<dim>                                    &materials;
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann;
-      const FunctionParser<dim> &                              body_force;
+      const FunctionParser<dim>                               &body_force;
     };
   } // namespace Bulk
 } // namespace Signorini

@@ -315,8 +315,8 @@ namespace Signorini
 
 
     /**
-     * Normal status decided per multiplier node (pairs with a meshed master on an
-     * integration-point rule, `Contact/Statuses = node`): node l is in
+     * Normal status decided per multiplier node (pairs with a meshed master on
+     * an integration-point rule, `Contact/Statuses = node`): node l is in
      * contact iff lambda_l - rho_n G_l / D_l < 0, with the weighted gap
      * G_l = sum_k w_k psi_l g_k over the paired points of the node's faces
      * and D_l = sum_k w_k psi_l over all of them (psi: the multiplier

@@ -1,9 +1,9 @@
 #ifndef signorini_contact_contact_problem_h
 #define signorini_contact_contact_problem_h
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
-#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
@@ -90,14 +90,14 @@ namespace Signorini
       using NodeFriction = Contact::NodeFriction<dim>;
 
     public:
-      ContactProblem(const Parameters &     parameters,
-                     const Mapping<dim> &   mapping,
-                     const FESystem<dim> &  fe,
-                     const DoFHandler<dim> &dof_handler,
-                     const Bulk::Materials<dim> &materials,
-                     std::vector<std::unique_ptr<Obstacles::Interface<dim>>>
-                       &&obstacles,
-                     const MPI_Comm                                 comm);
+      ContactProblem(
+        const Parameters                                         &parameters,
+        const Mapping<dim>                                       &mapping,
+        const FESystem<dim>                                      &fe,
+        const DoFHandler<dim>                                    &dof_handler,
+        const Bulk::Materials<dim>                               &materials,
+        std::vector<std::unique_ptr<Obstacles::Interface<dim>>> &&obstacles,
+        const MPI_Comm                                            comm);
 
       bool
       active() const
@@ -139,8 +139,8 @@ namespace Signorini
        */
       void
       setup(const AffineConstraints<double> &u_constraints,
-            const IndexSet &                 locally_owned_u,
-            ConditionalOStream &             pcout);
+            const IndexSet                  &locally_owned_u,
+            ConditionalOStream              &pcout);
 
       /** The contact surfaces: faces, slave nodes, multiplier numbering
        * (surfaces.h). */
@@ -185,7 +185,7 @@ namespace Signorini
       /** Entries of the contact blocks for the current pairing. */
       void
       add_sparsity(TrilinosWrappers::SparsityPattern &sparsity,
-                   const AffineConstraints<double> &  constraints) const;
+                   const AffineConstraints<double>   &constraints) const;
 
       /**
        * Multipliers realising 'Initial status' = open / closed: written
@@ -364,7 +364,7 @@ namespace Signorini
         // relative deviation from |f_t| = mu |f_n|.
         double min_cosine    = 1;
         double max_deviation = 0;
-        bool   by_node    = false; // statuses per node
+        bool   by_node       = false; // statuses per node
       };
       std::vector<LawCheck>
       law_checks(const TrilinosWrappers::MPI::Vector &state) const;
@@ -402,13 +402,13 @@ namespace Signorini
       add_node_slip_samples(std::vector<TrilinosWrappers::MPI::Vector> &nodal,
                             const SlipScales                           &scales,
                             std::vector<LawCheck> &result) const;
-      const Parameters &   parameters;
+      const Parameters    &parameters;
       const FESystem<dim> &fe;
       MPI_Comm             comm;
-      Surfaces<dim>               surfaces;
+      Surfaces<dim>        surfaces;
       // The contact points and their masters (pairing.h).
       Pairing<dim> pairing;
-      Coefficients        coefficients; // rho_n, rho_t, law parameters per pair
+      Coefficients coefficients; // rho_n, rho_t, law parameters per pair
       // Statuses per multiplier node (node_statuses.h).
       NodeStatuses<dim> node_statuses;
       // What the points hold, for the user (output.h).

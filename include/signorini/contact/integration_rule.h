@@ -40,7 +40,8 @@ namespace Signorini
       virtual bool
       is_nodal() const = 0;
 
-      /** Short description for the log, e.g. "gauss, 3 points per direction". */
+      /** Short description for the log, e.g. "gauss, 3 points per direction".
+       */
       virtual std::string
       name() const = 0;
     };

@@ -130,8 +130,8 @@ namespace Signorini
     template <int dim>
     LineIntersection<dim>
     intersect_line_with_face(const std::vector<Point<dim>> &face_points,
-                             const Point<dim> &             p,
-                             const Tensor<1, dim> &         d);
+                             const Point<dim>              &p,
+                             const Tensor<1, dim>          &d);
 
     /**
      * Values at xi of the @p n_points shape functions of FE_Q<dim-1>
@@ -141,7 +141,7 @@ namespace Signorini
     void
     face_shape_values(const unsigned int    n_points,
                       const Point<dim - 1> &xi,
-                      std::vector<double> & values);
+                      std::vector<double>  &values);
 
     /**
      * Position, covariant tangents dx/dxi_k and unit normal (not oriented:
@@ -160,7 +160,7 @@ namespace Signorini
     template <int dim>
     FaceGeometry<dim>
     face_geometry(const std::vector<Point<dim>> &face_points,
-                  const Point<dim - 1> &         xi);
+                  const Point<dim - 1>          &xi);
 
 
 

@@ -58,9 +58,9 @@ namespace Signorini
     template <int dim>
     Segmentation<dim>
     segment_slave_face(
-      const std::vector<Point<dim>> &                      slave,
+      const std::vector<Point<dim>>                      &slave,
       const std::vector<const std::vector<Point<dim>> *> &candidates,
-      const unsigned int                                   n_points);
+      const unsigned int                                  n_points);
 
     template <>
     Segmentation<2>

@@ -29,7 +29,7 @@ namespace Signorini
       std::vector<unsigned int>            u_local;    // cell dofs on face
       std::vector<unsigned int>            node_local; // comp-0 cell dofs
       std::vector<types::global_dof_index> lambda_dofs;
-      std::vector<types::global_dof_index> friction_dofs; // node-major
+      std::vector<types::global_dof_index> friction_dofs;  // node-major
       Tensor<1, dim>                       outward_normal; // at centre
       // The face map: reference node positions in FE_Q<dim-1> order
       // (as for master faces); k_node[k] = l, the node_local index of
@@ -54,8 +54,8 @@ namespace Signorini
     struct MasterFace
     {
       unsigned int                         pair;
-      std::vector<Point<dim>>              X; // reference node positions
-      std::vector<types::global_dof_index> dofs; // node-major, dim each
+      std::vector<Point<dim>>              X;      // reference node positions
+      std::vector<types::global_dof_index> dofs;   // node-major, dim each
       Point<dim>                           inside; // reference cell centre
       // Partition-independent identity (the cell's CellId and the face
       // number): master_faces is sorted by it, so that the search and the
@@ -82,8 +82,8 @@ namespace Signorini
      * weights. */
     struct NodeInfo
     {
-      types::global_dof_index lambda   = numbers::invalid_dof_index;
-      types::global_dof_index friction = numbers::invalid_dof_index;
+      types::global_dof_index lambda           = numbers::invalid_dof_index;
+      types::global_dof_index friction         = numbers::invalid_dof_index;
       unsigned int            pair             = 0;
       bool                    exclude_contact  = false;
       bool                    exclude_friction = false;
@@ -93,8 +93,7 @@ namespace Signorini
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar &lambda &friction &pair &exclude_contact &exclude_friction
-          &hanging;
+        ar &lambda &friction &pair &exclude_contact &exclude_friction &hanging;
       }
     };
 

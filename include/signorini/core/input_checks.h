@@ -38,8 +38,9 @@ namespace Signorini
   {
   public:
     CerrCapture()
-      : old(std::cerr.rdbuf(sink.rdbuf()))
-    {}
+        : old(std::cerr.rdbuf(sink.rdbuf()))
+    {
+    }
     ~CerrCapture()
     {
       std::cerr.rdbuf(old);
@@ -56,7 +57,7 @@ namespace Signorini
 
   private:
     std::ostringstream sink;
-    std::streambuf *   old;
+    std::streambuf    *old;
   };
 
   /**
@@ -72,7 +73,7 @@ namespace Signorini
    */
   void
   check_numbered_subsections(const std::string &text,
-                             const Counts &     counts,
+                             const Counts      &counts,
                              const std::string &source);
 
   /**

@@ -52,36 +52,41 @@ namespace Signorini
     quarter
   };
 
-  /** One body: a generated shape or a mesh file (subsection Geometry/Body k). */
+  /** One body: a generated shape or a mesh file (subsection Geometry/Body k).
+   */
   struct BodyParameters
   {
-    BodyShape                shape;
-    std::vector<double>      lower_corner, upper_corner;
-    std::vector<unsigned int> subdivisions;
-    std::vector<double>      centre;
-    double                   radius;
-    Segment                  segment;
-    double                   length;
-    std::string              mesh_file;
+    BodyShape                            shape;
+    std::vector<double>                  lower_corner, upper_corner;
+    std::vector<unsigned int>            subdivisions;
+    std::vector<double>                  centre;
+    double                               radius;
+    Segment                              segment;
+    double                               length;
+    std::string                          mesh_file;
     std::map<unsigned int, unsigned int> boundary_id_map;
-    std::vector<unsigned int> boundary_ids;
-    int                      material_id;
-    std::vector<double>      shift;
+    std::vector<unsigned int>            boundary_ids;
+    int                                  material_id;
+    std::vector<double>                  shift;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct GeometryParameters
   {
     unsigned int                global_refinements;
     unsigned int                local_refinements;
-    unsigned long long          maximum_cells; // refinement beyond: refused
+    unsigned long long          maximum_cells;     // refinement beyond: refused
     std::string                 refinement_region; // f(x, y, z) > 0: refine
     std::vector<BodyParameters> bodies;
 
-    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
-    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
+    static void
+    declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void
+    parse_parameters(ParameterHandler &prm, const Counts &counts);
   };
 
   struct MaterialParameters
@@ -91,11 +96,14 @@ namespace Signorini
     double       youngs_modulus;
     double       poissons_ratio;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
-  /** A Dirichlet condition on some components of one boundary (or one point of it). */
+  /** A Dirichlet condition on some components of one boundary (or one point of
+   * it). */
   struct DirichletParameters
   {
     std::vector<unsigned int> boundary_ids;
@@ -103,8 +111,10 @@ namespace Signorini
     std::vector<std::string>  values; // one expression per entry of components
     std::vector<double>       at_point; // empty: the whole boundary
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   enum class NeumannType
@@ -116,11 +126,14 @@ namespace Signorini
   struct NeumannParameters
   {
     std::vector<unsigned int> boundary_ids;
-    NeumannType              type;
-    std::vector<std::string> values; // dim expressions (traction) or 1 (pressure)
+    NeumannType               type;
+    std::vector<std::string>
+      values; // dim expressions (traction) or 1 (pressure)
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct BoundaryConditionParameters
@@ -130,19 +143,23 @@ namespace Signorini
     std::vector<std::string>         body_force;
     std::map<std::string, double>    constants;
 
-    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
-    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
+    static void
+    declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void
+    parse_parameters(ParameterHandler &prm, const Counts &counts);
   };
 
   struct LoadSteppingParameters
   {
     std::vector<double> step_times; // end times of the steps, increasing
     unsigned int        max_cuts;
-    bool                extrapolate; // Predictor = extrapolated
-    bool explicit_times = false; // the user gave 'Step times'
+    bool                extrapolate;            // Predictor = extrapolated
+    bool                explicit_times = false; // the user gave 'Step times'
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   /** Adaptive refinement after load steps ('Adaptive refinement'). */
@@ -156,15 +173,17 @@ namespace Signorini
       every,
       between
     };
-    unsigned int cycles;              // refine-and-resolve cycles, 0: off
+    unsigned int cycles; // refine-and-resolve cycles, 0: off
     Steps        steps;
     double       refinement_fraction; // of the active cells, by count
     double       coarsening_fraction;
     bool         refine_contact_zone;
     unsigned int maximum_level; // finest level of a cell, 0: automatic
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct NewtonParameters
@@ -176,8 +195,10 @@ namespace Signorini
     unsigned int line_search_steps; // 0: full Newton updates
     double       tolerance_between_pairings;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   enum class LinearSolverType
@@ -195,8 +216,10 @@ namespace Signorini
     unsigned int     max_iterations;
     bool             rigid_body_modes;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   enum class Verbosity
@@ -208,14 +231,16 @@ namespace Signorini
 
   struct OutputParameters
   {
-    std::string directory;
-    bool        write_csv;
-    bool        timing_summary;
-    Verbosity   verbosity;
+    std::string              directory;
+    bool                     write_csv;
+    bool                     timing_summary;
+    Verbosity                verbosity;
     std::vector<std::string> postprocessors; // names, in the listed order
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   /** Optional exact solution the run compares itself against (verification). */
@@ -231,7 +256,7 @@ namespace Signorini
     std::vector<double> friction_ratio_normal;
     bool                friction_ratio_contact_frame;
     double              force_variation_tolerance; // 0: not checked
-    bool                cattaneo_mindlin; // stick zone check
+    bool                cattaneo_mindlin;          // stick zone check
     double              half_width, half_width_tolerance;
     std::vector<double> contact_centre;
     std::string         contact_pressure;
@@ -243,21 +268,23 @@ namespace Signorini
       double              value;
       double              tolerance; // relative
     };
-    std::vector<PointValue> point_values;
-    double                  point_value_tolerance;
-    double                  action_reaction_tolerance; // 0: not checked
-    double                  slip_law_tolerance; // 0: not checked
-    std::vector<std::string> contact_force; // empty: not checked
+    std::vector<PointValue>  point_values;
+    double                   point_value_tolerance;
+    double                   action_reaction_tolerance; // 0: not checked
+    double                   slip_law_tolerance;        // 0: not checked
+    std::vector<std::string> contact_force;             // empty: not checked
     double                   contact_force_tolerance;
     double                   contact_force_from; // first time checked
-    double                  gap_tolerance;           // 0: not checked
+    double                   gap_tolerance;      // 0: not checked
 
     /** Some reference is given (a check is asked for). */
     bool
     any() const;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   /** One contact pair (subsection Contact/Pair k), formulation.md 2. */
@@ -280,8 +307,10 @@ namespace Signorini
       return master == "body";
     }
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
   };
 
   /** Integration rule on the slave surface (formulation.md 6). */
@@ -323,36 +352,41 @@ namespace Signorini
     // Cattaneo-Mindlin step.
     static constexpr unsigned int freeze_after_cycles = 3;
 
-    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
-    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
+    static void
+    declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void
+    parse_parameters(ParameterHandler &prm, const Counts &counts);
   };
 
   struct Parameters
   {
-    unsigned int                dimension;
-    bool                        axisymmetric; // 2D: x = r, y = z
-    unsigned int                fe_degree;
-    bool projected_volumetric_strain; // B-bar: theta projected per cell
-    GeometryParameters          geometry;
+    unsigned int dimension;
+    bool         axisymmetric; // 2D: x = r, y = z
+    unsigned int fe_degree;
+    bool         projected_volumetric_strain; // B-bar: theta projected per cell
+    GeometryParameters              geometry;
     std::vector<MaterialParameters> materials;
-    BoundaryConditionParameters boundary_conditions;
-    ContactParameters           contact;
-    LoadSteppingParameters      load_stepping;
-    AdaptivityParameters        adaptivity;
-    NewtonParameters            newton;
-    LinearSolverParameters      linear_solver;
-    OutputParameters            output;
-    ReferenceParameters         reference;
-    std::string                 input_directory = "."; // for relative mesh paths
+    BoundaryConditionParameters     boundary_conditions;
+    ContactParameters               contact;
+    LoadSteppingParameters          load_stepping;
+    AdaptivityParameters            adaptivity;
+    NewtonParameters                newton;
+    LinearSolverParameters          linear_solver;
+    OutputParameters                output;
+    ReferenceParameters             reference;
+    std::string input_directory = "."; // for relative mesh paths
     // The parameter file read (empty: parameters from a string); the
     // parameter echo must not overwrite it.
-    std::string                 input_file;
+    std::string input_file;
 
-    static void declare_parameters(ParameterHandler &prm, const Counts &counts);
-    void        parse_parameters(ParameterHandler &prm, const Counts &counts);
+    static void
+    declare_parameters(ParameterHandler &prm, const Counts &counts);
+    void
+    parse_parameters(ParameterHandler &prm, const Counts &counts);
 
     /** Checks across subsections that patterns cannot express. */
-    void check_consistency() const;
+    void
+    check_consistency() const;
     /** The contact part of check_consistency(). */
     void
     check_contact() const;
@@ -363,19 +397,21 @@ namespace Signorini
    * file, line, subsection and parameter. On success @p prm holds the full,
    * declared parameter set (for echoing into the output directory).
    */
-  Parameters read_parameters(const std::string &filename, ParameterHandler &prm);
+  Parameters
+  read_parameters(const std::string &filename, ParameterHandler &prm);
 
   /** Same from a string (used by unit tests and the library interface). */
-  Parameters read_parameters_from_string(const std::string &text,
-                                         ParameterHandler & prm);
+  Parameters
+  read_parameters_from_string(const std::string &text, ParameterHandler &prm);
 
   /** Splits "a; b; c" into trimmed expressions (empty string -> empty list). */
-  std::vector<std::string> split_expressions(const std::string &text);
+  std::vector<std::string>
+  split_expressions(const std::string &text);
 
   /** A point of dimension @p dim from a list of numbers, with a clear error. */
   template <int dim>
-  Point<dim> to_point(const std::vector<double> &values,
-                      const std::string &        where);
+  Point<dim>
+  to_point(const std::vector<double> &values, const std::string &where);
 } // namespace Signorini
 
 #endif

@@ -61,8 +61,8 @@ namespace Signorini
       void
       add(const std::string &name,
           const std::string &description,
-          const Declare &    declare_parameters,
-          const Factory &    create)
+          const Declare     &declare_parameters,
+          const Factory     &create)
       {
         AssertThrow(entries.count(name) == 0,
                     ExcMessage("Two plug-ins are registered under the name '" +
@@ -147,6 +147,7 @@ namespace Signorini
  * source file (the line of the registration). */
 #define SIGNORINI_PLUGIN_NAME_CONCAT(a, b) a##b
 #define SIGNORINI_PLUGIN_NAME_LINE(a, b) SIGNORINI_PLUGIN_NAME_CONCAT(a, b)
-#define SIGNORINI_PLUGIN_NAME(prefix) SIGNORINI_PLUGIN_NAME_LINE(prefix, __LINE__)
+#define SIGNORINI_PLUGIN_NAME(prefix) \
+  SIGNORINI_PLUGIN_NAME_LINE(prefix, __LINE__)
 
 #endif

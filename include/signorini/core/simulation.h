@@ -13,8 +13,8 @@
 #include <signorini/core/load_step.h>
 #include <signorini/core/parameters.h>
 #include <signorini/postprocess/interface.h>
-#include <signorini/postprocess/run_report.h>
 #include <signorini/postprocess/results.h>
+#include <signorini/postprocess/run_report.h>
 #include <signorini/solver/linear_solver.h>
 #include <signorini/solver/load_stepper.h>
 
@@ -173,10 +173,10 @@ namespace Signorini
     Contact::ContactProblem<dim> contact;
     // The step report, statistics.csv and the run summary, with the
     // counts of the load step under way.
-    Postprocess::RunReport<dim>   report;
-    EquilibriumProblem<dim>       equilibrium;
-    LoadStep<dim>                 load_step;
-    Postprocess::Results<dim> results;
+    Postprocess::RunReport<dim> report;
+    EquilibriumProblem<dim>     equilibrium;
+    LoadStep<dim>               load_step;
+    Postprocess::Results<dim>   results;
 
     unsigned int maximum_level = 0; // adaptivity: finest level (0: not set)
   };

@@ -40,7 +40,7 @@ namespace Signorini
     template <int dim>
     void
     check_reference_cells(const Triangulation<dim> &tria,
-                          const std::string &       where);
+                          const std::string        &where);
 
     /** GridIn's own diagnostics (printed to std::cerr) in one line. */
     std::string
@@ -64,7 +64,7 @@ namespace Signorini
     check_local_refinement(
       const parallel::distributed::Triangulation<dim> &triangulation,
       const unsigned int                               cycle,
-      const Parameters &                               parameters);
+      const Parameters                                &parameters);
 
     /**
      * The number of active cells once the refinement flagged now (after
@@ -95,7 +95,7 @@ namespace Signorini
     void
     add_mesh_parts(const Triangulation<dim> &tria,
                    const unsigned int        body,
-                   std::vector<MeshPart> &   parts);
+                   std::vector<MeshPart>    &parts);
 
     /**
      * Refuses a contact pair whose slave ids lie on more than one part, or
@@ -103,7 +103,7 @@ namespace Signorini
      * has are left to the contact set-up, which names them.
      */
     void
-    check_contact_surfaces(const ContactParameters &    contact,
+    check_contact_surfaces(const ContactParameters     &contact,
                            const std::vector<MeshPart> &parts);
   } // namespace Geometry
 } // namespace Signorini

@@ -24,7 +24,7 @@ namespace Signorini
 
     template <int dim>
     void
-    create_mesh(const Parameters &                         parameters,
+    create_mesh(const Parameters                          &parameters,
                 parallel::distributed::Triangulation<dim> &triangulation);
 
     /** All boundary ids of the coarse mesh (the same on every rank). */

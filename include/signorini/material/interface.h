@@ -108,8 +108,8 @@ namespace Signorini
        */
       virtual void
       evaluate(const SymmetricTensor<2, 3> &strain,
-               SymmetricTensor<2, 3> &      stress,
-               SymmetricTensor<4, 3> *      tangent) const = 0;
+               SymmetricTensor<2, 3>       &stress,
+               SymmetricTensor<4, 3>       *tangent) const = 0;
 
       /** True if the stress is a linear function of the strain without
        * history: Newton's step at fixed contact statuses is then exact. */
@@ -131,10 +131,12 @@ namespace Signorini
        */
       virtual void
       commit()
-      {}
+      {
+      }
       virtual void
       roll_back()
-      {}
+      {
+      }
 
       double
       youngs_modulus() const
@@ -185,17 +187,15 @@ namespace Signorini
  * of 'Material k/Model') with a one-line @p description. Use once, in the
  * model's source file, at namespace scope.
  */
-#define SIGNORINI_REGISTER_MATERIAL(classname, name, description)       \
-  namespace                                                             \
-  {                                                                     \
-    const ::Signorini::Plugins::Registration<                           \
-      ::Signorini::Material::Interface<2>,                              \
-      classname<2>>                                                     \
-      SIGNORINI_PLUGIN_NAME(signorini_material_2_)(name, description);  \
-    const ::Signorini::Plugins::Registration<                           \
-      ::Signorini::Material::Interface<3>,                              \
-      classname<3>>                                                     \
-      SIGNORINI_PLUGIN_NAME(signorini_material_3_)(name, description);  \
+#define SIGNORINI_REGISTER_MATERIAL(classname, name, description)        \
+  namespace                                                              \
+  {                                                                      \
+    const ::Signorini::Plugins::                                         \
+      Registration<::Signorini::Material::Interface<2>, classname<2>>    \
+        SIGNORINI_PLUGIN_NAME(signorini_material_2_)(name, description); \
+    const ::Signorini::Plugins::                                         \
+      Registration<::Signorini::Material::Interface<3>, classname<3>>    \
+        SIGNORINI_PLUGIN_NAME(signorini_material_3_)(name, description); \
   }
 
 #endif

@@ -25,8 +25,8 @@ namespace Signorini
 
       void
       evaluate(const SymmetricTensor<2, 3> &strain,
-               SymmetricTensor<2, 3> &      stress,
-               SymmetricTensor<4, 3> *      tangent) const override;
+               SymmetricTensor<2, 3>       &stress,
+               SymmetricTensor<4, 3>       *tangent) const override;
 
       bool
       is_linear() const override

@@ -43,18 +43,18 @@ namespace Signorini
        * @p axisymmetric: x = r, the hoop strain enters theta and the weight
        * 2 pi r the integrals. */
       ProjectedVolumetricStrain(const FiniteElement<dim> &fe,
-                                const Quadrature<dim> &   quadrature,
+                                const Quadrature<dim>    &quadrature,
                                 const bool                axisymmetric)
-        : fe(fe)
-        , quadrature(quadrature)
-        , basis(fe.degree - 1)
-        , axisymmetric(axisymmetric)
-        , n_basis(basis.n_dofs_per_cell())
-        , phi(n_basis, quadrature.size())
-        , M(n_basis, n_basis)
-        , M_inv(n_basis, n_basis)
-        , G(n_basis, fe.n_dofs_per_cell())
-        , M_inv_G(n_basis, fe.n_dofs_per_cell())
+          : fe(fe)
+          , quadrature(quadrature)
+          , basis(fe.degree - 1)
+          , axisymmetric(axisymmetric)
+          , n_basis(basis.n_dofs_per_cell())
+          , phi(n_basis, quadrature.size())
+          , M(n_basis, n_basis)
+          , M_inv(n_basis, n_basis)
+          , G(n_basis, fe.n_dofs_per_cell())
+          , M_inv_G(n_basis, fe.n_dofs_per_cell())
       {
         for (unsigned int a = 0; a < n_basis; ++a)
           for (unsigned int q = 0; q < quadrature.size(); ++q)
@@ -75,8 +75,7 @@ namespace Signorini
             for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
               {
                 theta[i] = fe_values[displacement].divergence(i, q);
-                if (axisymmetric &&
-                    fe.system_to_component_index(i).first == 0)
+                if (axisymmetric && fe.system_to_component_index(i).first == 0)
                   theta[i] += fe_values.shape_value(i, q) / r;
               }
             add_point(q,

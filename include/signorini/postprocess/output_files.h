@@ -76,7 +76,7 @@ namespace Signorini
      * ExcIO then), else it is passed on.
      */
     std::string
-    write_atomically(const std::string &                        filename,
+    write_atomically(const std::string                         &filename,
                      const std::function<void(std::ostream &)> &write);
 
     /**

@@ -36,14 +36,14 @@ namespace Signorini
       /** @p prm: the parameters read (the postprocessors read their own
        * subsections, and the run's are echoed to the output directory). */
       Results(const Parameters                    &parameters,
-                  ParameterHandler                    &prm,
-                  const DiscreteSystem<dim>           &system,
-                  const Bulk::Materials<dim>          &materials,
-                  const Bulk::BoundaryConditions<dim> &boundary_conditions,
-                  const Contact::ContactProblem<dim>  &contact,
-                  RunReport<dim>                      &report,
-                  TimerOutput                         &timer,
-                  ConditionalOStream                  &sout);
+              ParameterHandler                    &prm,
+              const DiscreteSystem<dim>           &system,
+              const Bulk::Materials<dim>          &materials,
+              const Bulk::BoundaryConditions<dim> &boundary_conditions,
+              const Contact::ContactProblem<dim>  &contact,
+              RunReport<dim>                      &report,
+              TimerOutput                         &timer,
+              ConditionalOStream                  &sout);
 
       /** The output directory: earlier results removed, parameters
        * echoed, newton_history.csv started. */

@@ -34,16 +34,16 @@ namespace Signorini
        * @p solution that DataOut writes): the volumetric strain projected
        * per cell (B-bar). */
       StressPostprocessor(
-        const Mapping<dim> &                 mapping,
-        const Bulk::Materials<dim> &         materials,
+        const Mapping<dim>                  &mapping,
+        const Bulk::Materials<dim>          &materials,
         const bool                           axisymmetric = false,
-        const FiniteElement<dim> *           projected    = nullptr,
+        const FiniteElement<dim>            *projected    = nullptr,
         const TrilinosWrappers::MPI::Vector *solution     = nullptr)
-        : mapping(mapping)
-        , materials(materials)
-        , axisymmetric(axisymmetric)
-        , projected(projected)
-        , solution(solution)
+          : mapping(mapping)
+          , materials(materials)
+          , axisymmetric(axisymmetric)
+          , projected(projected)
+          , solution(solution)
       {
         Assert(!projected || solution, ExcInternalError());
       }
@@ -52,7 +52,7 @@ namespace Signorini
       get_names() const override
       {
         std::vector<std::string> names;
-        const char *axis[] = {"x", "y", "z"};
+        const char              *axis[] = {"x", "y", "z"};
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
             names.push_back(std::string("stress_") + axis[i] + axis[j]);
@@ -81,10 +81,10 @@ namespace Signorini
       void
       evaluate_vector_field(
         const DataPostprocessorInputs::Vector<dim> &inputs,
-        std::vector<Vector<double>> &computed) const override
+        std::vector<Vector<double>>                &computed) const override
       {
-        const auto  cell = inputs.template get_cell<dim>();
-        const auto &material = *materials.at(cell->material_id());
+        const auto          cell     = inputs.template get_cell<dim>();
+        const auto         &material = *materials.at(cell->material_id());
         std::vector<double> volumetric(computed.size());
         if (projected)
           {
@@ -117,12 +117,12 @@ namespace Signorini
                 strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
                                       inputs.solution_gradients[q][j][i]);
             // Hoop strain u_r / r; on the axis its limit du_r/dr.
-            const double r    = inputs.evaluation_points.empty() ?
-                                  0. :
-                                  inputs.evaluation_points[q][0];
-            const double hoop = !axisymmetric ? 0. :
-                                r > 0 ? inputs.solution_values[q][0] / r :
-                                        inputs.solution_gradients[q][0][0];
+            const double          r    = inputs.evaluation_points.empty() ?
+                                           0. :
+                                           inputs.evaluation_points[q][0];
+            const double          hoop = !axisymmetric ? 0. :
+                                         r > 0 ? inputs.solution_values[q][0] / r :
+                                                 inputs.solution_gradients[q][0][0];
             SymmetricTensor<2, 3> stress;
             material.evaluate(Bulk::point_strain<dim>(strain,
                                                       hoop,
@@ -142,10 +142,10 @@ namespace Signorini
       }
 
     private:
-      const Mapping<dim> &                 mapping;
-      const Bulk::Materials<dim> &         materials;
+      const Mapping<dim>                  &mapping;
+      const Bulk::Materials<dim>          &materials;
       const bool                           axisymmetric;
-      const FiniteElement<dim> *           projected;
+      const FiniteElement<dim>            *projected;
       const TrilinosWrappers::MPI::Vector *solution;
     };
   } // namespace Postprocess

@@ -44,9 +44,9 @@ namespace Signorini
        * dim components of its FE); call after every change of the DoFs.
        */
       void
-      set_null_space(const Mapping<dim> &    mapping,
+      set_null_space(const Mapping<dim>    &mapping,
                      const DoFHandler<dim> &dof_handler,
-                     const IndexSet &       locally_owned_dofs);
+                     const IndexSet        &locally_owned_dofs);
 
       /**
        * Contact systems: the system index space is u in [0, n_u) followed
@@ -60,7 +60,7 @@ namespace Signorini
        */
       void
       set_multipliers(const types::global_dof_index n_u,
-                      const IndexSet &              owned_multipliers);
+                      const IndexSet               &owned_multipliers);
 
       /**
        * The sparsity pattern of the system matrix was rebuilt (new DoFs, a
@@ -74,8 +74,8 @@ namespace Signorini
       /** Solves A x = b; returns the Krylov iterations (0 for direct). */
       unsigned int
       solve(const TrilinosWrappers::SparseMatrix &A,
-            TrilinosWrappers::MPI::Vector &       x,
-            const TrilinosWrappers::MPI::Vector & b);
+            TrilinosWrappers::MPI::Vector        &x,
+            const TrilinosWrappers::MPI::Vector  &b);
 
     private:
       const LinearSolverParameters        parameters;
@@ -90,7 +90,7 @@ namespace Signorini
       // pattern, the numeric factorisation at every solve.
       std::unique_ptr<Epetra_LinearProblem> direct_problem;
       std::unique_ptr<Amesos_BaseSolver>    direct_solver;
-      const void *                          analysed_matrix = nullptr;
+      const void                           *analysed_matrix = nullptr;
       // Contact systems with GMRES: the u block of the first matrix of the
       // pattern and its AMG hierarchy (destroyed before it).
       std::unique_ptr<TrilinosWrappers::SparseMatrix>    kept_A;
@@ -98,15 +98,15 @@ namespace Signorini
 
       void
       solve_direct(const TrilinosWrappers::SparseMatrix &A,
-                   TrilinosWrappers::MPI::Vector &       x,
-                   const TrilinosWrappers::MPI::Vector & b);
+                   TrilinosWrappers::MPI::Vector        &x,
+                   const TrilinosWrappers::MPI::Vector  &b);
 
       unsigned int
       solve_blocks(const TrilinosWrappers::SparseMatrix &A,
-                   TrilinosWrappers::MPI::Vector &       x,
-                   const TrilinosWrappers::MPI::Vector & b);
+                   TrilinosWrappers::MPI::Vector        &x,
+                   const TrilinosWrappers::MPI::Vector  &b);
       void
-      initialize_amg(TrilinosWrappers::PreconditionAMG &   amg,
+      initialize_amg(TrilinosWrappers::PreconditionAMG    &amg,
                      const TrilinosWrappers::SparseMatrix &A);
     };
   } // namespace Solver

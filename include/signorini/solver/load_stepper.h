@@ -62,7 +62,7 @@ namespace Signorini
        * (progress.t_failed: the target that failed last). */
       bool
       advance(QuasiStaticProblem &problem,
-              StepProgress &      progress,
+              StepProgress       &progress,
               const double        t_end) const;
 
     private:

@@ -70,9 +70,9 @@ namespace Signorini
         exact_floor_line() const;
       };
 
-      NewtonSolver(const Parameters &        parameters,
+      NewtonSolver(const Parameters         &parameters,
                    const ConditionalOStream &out,
-                   TimerOutput &             timer);
+                   TimerOutput              &timer);
 
       /**
        * Newton iterations on @p problem from its current iterate.
@@ -84,45 +84,45 @@ namespace Signorini
        */
       Result
       solve(NonlinearProblem &problem,
-            double &          force_level,
+            double           &force_level,
             const double      tolerance = 0.) const;
 
     private:
       /** What the rules say of an evaluated iterate. */
       struct Verdict
       {
-        bool converged = false;
-        bool release   = false; // frozen statuses to release first
-        bool at_exact_floor = false;
-        double floor = 0;       // round-off floor [N]
+        bool   converged      = false;
+        bool   release        = false; // frozen statuses to release first
+        bool   at_exact_floor = false;
+        double floor          = 0; // round-off floor [N]
       };
       /** Applies the convergence rules to @p evaluation (residual
        * @p residual) with the history of the solve in @p settled_before,
        * @p residual_before and whether the iterate came from an exact
        * step. */
       Verdict
-      judge(const Evaluation &evaluation,
-            const double      residual,
-            const double      force_level,
-            const double      tolerance,
+      judge(const Evaluation  &evaluation,
+            const double       residual,
+            const double       force_level,
+            const double       tolerance,
             const unsigned int iteration,
-            const bool        step_exact,
-            bool &            settled_before,
-            double &          residual_before) const;
+            const bool         step_exact,
+            bool              &settled_before,
+            double            &residual_before) const;
       /** Backtracking after a full update that made the residual grow from
        * @p residual_now to @p residual_full: the fraction of @p update
        * from @p base to take. */
       double
-      line_search(NonlinearProblem &                   problem,
+      line_search(NonlinearProblem                    &problem,
                   const TrilinosWrappers::MPI::Vector &base,
                   const TrilinosWrappers::MPI::Vector &update,
                   const double                         residual_now,
                   const double                         residual_full,
-                  Result &                             result) const;
+                  Result                              &result) const;
 
       const Parameters          parameters;
       const ConditionalOStream &out;
-      TimerOutput &             timer;
+      TimerOutput              &timer;
     };
   } // namespace Solver
 } // namespace Signorini

@@ -79,7 +79,7 @@ namespace Signorini
        * @p converged). */
       virtual void
       record_iterate(const unsigned int iteration,
-                     const Evaluation & evaluation,
+                     const Evaluation  &evaluation,
                      const double       force_level,
                      const bool         converged) = 0;
       /** Development checks of an iterate with a finite residual (the

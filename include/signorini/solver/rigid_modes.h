@@ -55,8 +55,8 @@ namespace Signorini
     double
     rigid_mode_value(const unsigned int m,
                      const unsigned int c,
-                     const Point<dim> & x,
-                     const Point<dim> & centre);
+                     const Point<dim>  &x,
+                     const Point<dim>  &centre);
 
     /** "translation along x", "rotation about z", ... */
     template <int dim>
@@ -81,10 +81,10 @@ namespace Signorini
        * their parents in the condensed system.
        */
       void
-      setup(const Mapping<dim> &             mapping,
-            const DoFHandler<dim> &          dof_handler,
+      setup(const Mapping<dim>              &mapping,
+            const DoFHandler<dim>           &dof_handler,
             const AffineConstraints<double> &constraints,
-            const IndexSet &                 owned_system,
+            const IndexSet                  &owned_system,
             const bool                       axisymmetric,
             const MPI_Comm                   comm);
 
@@ -97,7 +97,7 @@ namespace Signorini
       void
       hold(TrilinosWrappers::SparseMatrix &K,
            const types::global_dof_index   n_u,
-           const std::vector<Motion> &     motions) const;
+           const std::vector<Motion>      &motions) const;
 
       /** "the body of material 1 (around (0.02, 0.005)): rigid
        * translation along x" */
@@ -118,10 +118,10 @@ namespace Signorini
         std::vector<TrilinosWrappers::MPI::Vector> modes;
         std::vector<types::global_dof_index>       pins; // one per mode
       };
-      std::vector<Body> bodies;
-      IndexSet          owned;
-      MPI_Comm          comm = MPI_COMM_SELF;
-      unsigned int      n_modes = 0;
+      std::vector<Body>         bodies;
+      IndexSet                  owned;
+      MPI_Comm                  comm    = MPI_COMM_SELF;
+      unsigned int              n_modes = 0;
       std::vector<unsigned int> mode_ids; // rigid_mode_value numbers
     };
   } // namespace Solver

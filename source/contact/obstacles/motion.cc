@@ -12,11 +12,11 @@ namespace Signorini
 
 
     template <int dim>
-    Motion<dim>::Motion(const std::vector<std::string> &     translation_in,
-                        const std::vector<std::string> &     rotation_in,
-                        const std::vector<double> &          centre_in,
+    Motion<dim>::Motion(const std::vector<std::string>      &translation_in,
+                        const std::vector<std::string>      &rotation_in,
+                        const std::vector<double>           &centre_in,
                         const std::map<std::string, double> &constants,
-                        const std::string &                  where)
+                        const std::string                   &where)
     {
       if (translation_in.size() < dim)
         throw InputError(where + ", parameter 'Obstacle motion': give " +

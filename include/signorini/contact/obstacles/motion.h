@@ -61,11 +61,11 @@ namespace Signorini
        * @p centre: dim coordinates. @p where names the subsection for the
        * messages (InputError) of entries it cannot use.
        */
-      Motion(const std::vector<std::string> &     translation,
-             const std::vector<std::string> &     rotation,
-             const std::vector<double> &          centre,
+      Motion(const std::vector<std::string>      &translation,
+             const std::vector<std::string>      &rotation,
+             const std::vector<double>           &centre,
              const std::map<std::string, double> &constants,
-             const std::string &                  where);
+             const std::string                   &where);
 
       RigidMotion<dim>
       at(const double t) const;
