@@ -46,6 +46,22 @@ namespace Signorini
   }
 
 
+  // The anti-cycling of the geometric loop froze @p n points (statuses or
+  // master faces back at those of two pairings before): counted as cycles
+  // and freezes of the step, and said with @p what.
+  template <int dim>
+  void
+  LoadStep<dim>::count_geometric_freezes(const unsigned int n, const char *what)
+  {
+    if (n == 0)
+      return;
+    report.counts.cycle_detections += n;
+    report.counts.points_frozen += n;
+    pcout << "    geometric loop: " << n << " point(s) back " << what
+          << std::endl;
+  }
+
+
   template <int dim>
   void
   LoadStep<dim>::restart_from_step_start()
@@ -104,15 +120,9 @@ namespace Signorini
           return finish_geometric_loop(handover, iterations);
         // Anti-cycling across pairings: points back at their status of two
         // pairings before keep one status for the rest of the step.
-        if (const unsigned int n = contact.end_geometric_iteration(g); n > 0)
-          {
-            report.counts.cycle_detections += n;
-            report.counts.points_frozen += n;
-            pcout << "    geometric loop: " << n
-                  << " point(s) back at their status of two pairings before:"
-                     " status frozen for the rest of the step"
-                  << std::endl;
-          }
+        count_geometric_freezes(contact.end_geometric_iteration(g),
+                                "at their status of two pairings before: "
+                                "status frozen for the rest of the step");
       }
     newton_failure_kind = NewtonFailure::geometric;
     newton_failure      = "the geometric loop did not converge in " +
@@ -173,15 +183,9 @@ namespace Signorini
               << " slave point(s) deep inside the master body, paired "
                  "from the penetrated side"
               << std::endl;
-      if (const unsigned int n = contact.newly_pinned(); n > 0)
-        {
-          report.counts.cycle_detections += n;
-          report.counts.points_frozen += n;
-          pcout << "    geometric loop: " << n
-                << " point(s) back on their master face of two pairings"
-                   " before: pinned to it for the rest of the step"
-                << std::endl;
-        }
+      count_geometric_freezes(contact.newly_pinned(),
+                              "on their master face of two pairings before: "
+                              "pinned to it for the rest of the step");
       if (first_pairing)
         {
           TrilinosWrappers::MPI::Vector owned(system.owned_system,

@@ -108,6 +108,10 @@ namespace Signorini
     newton(unsigned int &iterations, const double tolerance = 0.);
     void
     record_increment();
+    /** Counts and prints @p n points frozen by the geometric loop's
+     * anti-cycling; @p what ends the line. */
+    void
+    count_geometric_freezes(const unsigned int n, const char *what);
 
     const Parameters              &parameters;
     DiscreteSystem<dim>           &system;
