@@ -49,11 +49,12 @@ namespace Example
     }
 
     void
-    evaluate(const SymmetricTensor<2, 3> &strain,
-             SymmetricTensor<2, 3>       &stress,
-             SymmetricTensor<4, 3>       *tangent) const override
+    evaluate(const SymmetricTensor<2, 3>   &strain,
+             const ArrayView<const double> &history,
+             SymmetricTensor<2, 3>         &stress,
+             SymmetricTensor<4, 3>         *tangent) const override
     {
-      elastic.evaluate(strain, stress, tangent);
+      elastic.evaluate(strain, history, stress, tangent);
       stress *= factor;
       if (tangent)
         *tangent *= factor;

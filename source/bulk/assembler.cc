@@ -4,7 +4,6 @@
 #include <deal.II/lac/vector.h>
 
 #include <signorini/bulk/assembler.h>
-#include <signorini/material/projected_volumetric_strain.h>
 
 #include <algorithm>
 
@@ -26,7 +25,119 @@ namespace Signorini
         , materials(materials)
         , neumann(neumann)
         , body_force(body_force)
+        , cell_quadrature(fe.degree + 1)
     {
+    }
+
+
+    template <int dim>
+    Assembler<dim>::CellKinematics::CellKinematics(
+      const Mapping<dim>    &mapping,
+      const FESystem<dim>   &fe,
+      const Quadrature<dim> &quadrature,
+      const bool             axisymmetric)
+        : fe_values(mapping,
+                    fe,
+                    quadrature,
+                    update_values | update_gradients |
+                      update_quadrature_points | update_JxW_values)
+        , projection(fe, quadrature, axisymmetric)
+        , B(quadrature.size(),
+            std::vector<SymmetricTensor<2, 3>>(fe.n_dofs_per_cell()))
+        , dV(quadrature.size())
+        , strain(quadrature.size())
+        , gradients(quadrature.size())
+        , u_values(quadrature.size())
+        , theta_i(fe.n_dofs_per_cell())
+        , local_u(fe.n_dofs_per_cell())
+    {
+    }
+
+
+    template <int dim>
+    void
+    Assembler<dim>::cell_kinematics(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const TrilinosWrappers::MPI::Vector                  &solution,
+      CellKinematics                                       &k) const
+    {
+      const FEValuesExtractors::Vector displacement(0);
+      const bool                       axisymmetric = parameters.axisymmetric;
+      const bool         projected = parameters.projected_volumetric_strain;
+      const unsigned int n         = fe.n_dofs_per_cell();
+      const unsigned int nq        = cell_quadrature.size();
+      auto              &fe_values = k.fe_values;
+      fe_values.reinit(cell);
+      fe_values[displacement].get_function_symmetric_gradients(solution,
+                                                               k.gradients);
+      if (axisymmetric)
+        fe_values[displacement].get_function_values(solution, k.u_values);
+
+      // B operator and the cell's projection (B-bar).
+      if (projected)
+        k.projection.start_cell();
+      for (unsigned int q = 0; q < nq; ++q)
+        {
+          const Point<dim> &x = fe_values.quadrature_point(q);
+          // Axisymmetric: the ring of radius r = x carries 2 pi r.
+          k.dV[q] =
+            fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const unsigned int c    = fe.system_to_component_index(i).first;
+              const double       hoop = axisymmetric && c == 0 ?
+                                          fe_values.shape_value(i, q) / x[0] :
+                                          0.;
+              k.B[q][i]               = Material::to_3d<dim>(
+                fe_values[displacement].symmetric_gradient(i, q), hoop);
+              k.theta_i[i] = trace(k.B[q][i]);
+            }
+          if (projected)
+            k.projection.add_point(q, k.dV[q], k.theta_i);
+        }
+      if (projected)
+        {
+          k.projection.finish_cell();
+          cell->get_dof_values(solution, k.local_u);
+          k.projection.coefficients(k.local_u, k.theta_bar);
+        }
+
+      // The strain of the solution (with B-bar its projected volumetric
+      // part, and the matching operator).
+      for (unsigned int q = 0; q < nq; ++q)
+        {
+          const double hoop =
+            axisymmetric ? k.u_values[q][0] / fe_values.quadrature_point(q)[0] :
+                           0.;
+          double theta_q = 0;
+          if (projected)
+            {
+              theta_q = k.projection.value_at(q, k.theta_bar);
+              k.projection.derivatives_at(q, k.dtheta_bar);
+              for (unsigned int i = 0; i < n; ++i)
+                k.B[q][i] += (k.dtheta_bar[i] - trace(k.B[q][i])) / 3. *
+                             unit_symmetric_tensor<3>();
+            }
+          k.strain[q] = point_strain<dim>(k.gradients[q],
+                                          hoop,
+                                          projected ? &theta_q : nullptr);
+        }
+    }
+
+
+    template <int dim>
+    void
+    Assembler<dim>::add_body_force(const CellKinematics &k,
+                                   Vector<double>       &cell_fext) const
+    {
+      Vector<double> force(dim);
+      for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
+        {
+          body_force.vector_value(k.fe_values.quadrature_point(q), force);
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            cell_fext(i) += force(fe.system_to_component_index(i).first) *
+                            k.fe_values.shape_value(i, q) * k.dV[q];
+        }
     }
 
 
@@ -35,126 +146,59 @@ namespace Signorini
     Assembler<dim>::assemble(
       const DoFHandler<dim>               &dof_handler,
       const TrilinosWrappers::MPI::Vector &solution,
+      const Material::History<dim>        &history,
       const AffineConstraints<double>     &constraints,
       TrilinosWrappers::SparseMatrix      *matrix,
       TrilinosWrappers::MPI::Vector       &rhs,
       TrilinosWrappers::MPI::Vector       &internal_force,
       TrilinosWrappers::MPI::Vector       &external_force) const
     {
-      const QGauss<dim>                quadrature(fe.degree + 1);
-      const QGauss<dim - 1>            face_quadrature(fe.degree + 1);
-      FEValues<dim>                    fe_values(mapping,
-                              fe,
-                              quadrature,
-                              update_values | update_gradients |
-                                update_quadrature_points | update_JxW_values);
-      FEFaceValues<dim>                fe_face_values(mapping,
+      const QGauss<dim - 1> face_quadrature(fe.degree + 1);
+      FEFaceValues<dim>     fe_face_values(mapping,
                                        fe,
                                        face_quadrature,
                                        update_values |
                                          update_quadrature_points |
                                          update_normal_vectors |
                                          update_JxW_values);
-      const FEValuesExtractors::Vector displacement(0);
-      const bool                       axisymmetric = parameters.axisymmetric;
-      const bool projected = parameters.projected_volumetric_strain;
-      Material::ProjectedVolumetricStrain<dim> projection(fe,
-                                                          quadrature,
-                                                          axisymmetric);
+      CellKinematics k(mapping, fe, cell_quadrature, parameters.axisymmetric);
 
-      const unsigned int n  = fe.n_dofs_per_cell();
-      const unsigned int nq = quadrature.size();
+      const unsigned int n = fe.n_dofs_per_cell();
       FullMatrix<double> cell_matrix(n, n);
-      Vector<double>     cell_rhs(n), cell_fint(n), cell_fext(n), local_u(n),
-        theta_bar;
+      Vector<double>     cell_rhs(n), cell_fint(n), cell_fext(n);
       std::vector<types::global_dof_index> dofs(n);
-      std::vector<SymmetricTensor<2, dim>> strains(nq);
-      std::vector<Tensor<1, dim>>          u_values(nq);
-      // The 3D strain of each shape function at each point (B operator),
-      // its trace, and with B-bar d theta_bar / d u_i.
-      std::vector<std::vector<SymmetricTensor<2, 3>>> B(
-        nq, std::vector<SymmetricTensor<2, 3>>(n));
-      std::vector<double>                theta_i(n), dtheta_bar;
-      std::vector<double>                dV(nq);
-      std::vector<SymmetricTensor<2, 3>> C_B(n);
-      Vector<double>                     force_values(dim);
+      std::vector<SymmetricTensor<2, 3>>   C_B(n);
 
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            fe_values.reinit(cell);
-            cell_matrix          = 0;
-            cell_fint            = 0;
-            cell_fext            = 0;
-            const auto &material = *materials.at(cell->material_id());
-            fe_values[displacement].get_function_symmetric_gradients(solution,
-                                                                     strains);
-            if (axisymmetric)
-              fe_values[displacement].get_function_values(solution, u_values);
-
-            // B operator, body force, and the cell's projection (B-bar).
-            if (projected)
-              projection.start_cell();
-            for (unsigned int q = 0; q < nq; ++q)
-              {
-                const Point<dim> &x = fe_values.quadrature_point(q);
-                // Axisymmetric: the ring of radius r = x carries 2 pi r.
-                dV[q] = fe_values.JxW(q) *
-                        (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-                body_force.vector_value(x, force_values);
-                for (unsigned int i = 0; i < n; ++i)
-                  {
-                    const unsigned int c =
-                      fe.system_to_component_index(i).first;
-                    const double hoop = axisymmetric && c == 0 ?
-                                          fe_values.shape_value(i, q) / x[0] :
-                                          0.;
-                    B[q][i]           = Material::to_3d<dim>(
-                      fe_values[displacement].symmetric_gradient(i, q), hoop);
-                    theta_i[i] = trace(B[q][i]);
-                    cell_fext(i) +=
-                      force_values(c) * fe_values.shape_value(i, q) * dV[q];
-                  }
-                if (projected)
-                  projection.add_point(q, dV[q], theta_i);
-              }
-            if (projected)
-              {
-                projection.finish_cell();
-                cell->get_dof_values(solution, local_u);
-                projection.coefficients(local_u, theta_bar);
-              }
+            cell_matrix                  = 0;
+            cell_fint                    = 0;
+            cell_fext                    = 0;
+            const auto        &material  = *materials.at(cell->material_id());
+            const unsigned int n_history = material.n_history_values();
+            cell_kinematics(cell, solution, k);
+            add_body_force(k, cell_fext);
 
             // Stress and tangent of the cell's model at every point.
-            for (unsigned int q = 0; q < nq; ++q)
+            for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
               {
-                const Point<dim> &x = fe_values.quadrature_point(q);
-                const double hoop   = axisymmetric ? u_values[q][0] / x[0] : 0.;
-                double       theta_q = 0;
-                if (projected)
-                  {
-                    theta_q = projection.value_at(q, theta_bar);
-                    projection.derivatives_at(q, dtheta_bar);
-                    for (unsigned int i = 0; i < n; ++i)
-                      B[q][i] += (dtheta_bar[i] - trace(B[q][i])) / 3. *
-                                 unit_symmetric_tensor<3>();
-                  }
-                const SymmetricTensor<2, 3> strain =
-                  point_strain<dim>(strains[q],
-                                    hoop,
-                                    projected ? &theta_q : nullptr);
                 SymmetricTensor<2, 3> stress;
                 SymmetricTensor<4, 3> C;
-                material.evaluate(strain, stress, matrix ? &C : nullptr);
+                material.evaluate(k.strain[q],
+                                  history.at(cell, q, n_history),
+                                  stress,
+                                  matrix ? &C : nullptr);
+                const auto &B = k.B[q];
                 for (unsigned int i = 0; i < n; ++i)
-                  cell_fint(i) += (stress * B[q][i]) * dV[q];
+                  cell_fint(i) += (stress * B[i]) * k.dV[q];
                 if (matrix)
                   {
                     for (unsigned int j = 0; j < n; ++j)
-                      C_B[j] = C * B[q][j];
+                      C_B[j] = C * B[j];
                     for (unsigned int i = 0; i < n; ++i)
                       for (unsigned int j = 0; j < n; ++j)
-                        cell_matrix(i, j) += (B[q][i] * C_B[j]) * dV[q];
+                        cell_matrix(i, j) += (B[i] * C_B[j]) * k.dV[q];
                   }
               }
 
@@ -170,6 +214,31 @@ namespace Signorini
               constraints.distribute_local_to_global(cell_rhs, dofs, rhs);
             internal_force.add(dofs, cell_fint);
             external_force.add(dofs, cell_fext);
+          }
+    }
+
+
+    template <int dim>
+    void
+    Assembler<dim>::update_history(
+      const DoFHandler<dim>               &dof_handler,
+      const TrilinosWrappers::MPI::Vector &solution,
+      Material::History<dim>              &history) const
+    {
+      if (!history.active())
+        return;
+      CellKinematics k(mapping, fe, cell_quadrature, parameters.axisymmetric);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto &material  = *materials.at(cell->material_id());
+            const auto  n_history = material.n_history_values();
+            if (n_history == 0)
+              continue;
+            cell_kinematics(cell, solution, k);
+            for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
+              material.update_history(k.strain[q],
+                                      history.at(cell, q, n_history));
           }
     }
 

@@ -272,6 +272,7 @@ namespace Signorini
 
     bulk.assemble(system.dof_handler,
                   system.solution,
+                  system.history,
                   system.constraints_update,
                   with_matrix ? &system.matrix : nullptr,
                   system.newton_rhs,

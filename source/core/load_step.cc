@@ -14,7 +14,7 @@ namespace Signorini
   template <int dim>
   LoadStep<dim>::LoadStep(const Parameters              &parameters,
                           DiscreteSystem<dim>           &system,
-                          Bulk::Materials<dim>          &materials,
+                          const Bulk::Assembler<dim>    &bulk,
                           Bulk::BoundaryConditions<dim> &boundary_conditions,
                           Contact::ContactProblem<dim>  &contact,
                           Solver::LinearSolver<dim>     &linear_solver,
@@ -24,7 +24,7 @@ namespace Signorini
                           ConditionalOStream            &pcout)
       : parameters(parameters)
       , system(system)
-      , materials(materials)
+      , bulk(bulk)
       , boundary_conditions(boundary_conditions)
       , contact(contact)
       , linear_solver(linear_solver)
@@ -269,11 +269,12 @@ namespace Signorini
     p.max_iterations     = parameters.newton.max_iterations;
     p.relative_tolerance = parameters.newton.relative_tolerance;
     p.absolute_tolerance = parameters.newton.absolute_tolerance;
-    // The line search damps the status changes of contact; a linear bulk
-    // alone has none.
-    p.line_search_steps =
-      contact.active() ? parameters.newton.line_search_steps : 0;
-    p.quiet = parameters.output.verbosity == Verbosity::quiet;
+    // The line search damps the status changes of contact and of the
+    // materials (yielding, unloading); a linear bulk alone has none.
+    p.line_search_steps = contact.active() || !equilibrium.linear_bulk() ?
+                            parameters.newton.line_search_steps :
+                            0;
+    p.quiet             = parameters.output.verbosity == Verbosity::quiet;
     const Solver::NewtonSolver solver(p, pcout, timer);
     last_newton = solver.solve(equilibrium, force_scale, tolerance);
     iterations  = last_newton.iterations;
@@ -336,9 +337,10 @@ namespace Signorini
     last_converged = system.state;
     none_converged = false;
     // The quadrature-point history of the materials follows the converged
-    // (sub)steps only.
-    for (auto &[id, material] : materials)
-      material->commit();
+    // (sub)steps only: a cut step, line-search trials and the Jacobian check
+    // never reach it.
+    system.update_solution();
+    bulk.update_history(system.dof_handler, system.solution, system.history);
   }
 
 
@@ -351,8 +353,6 @@ namespace Signorini
     report.append_newton_history();
     system.state = last_converged;
     system.update_solution();
-    for (auto &[id, material] : materials)
-      material->roll_back();
     // Back to the initial state: the retry needs the initial multipliers
     // again ('Initial status').
     if (none_converged)

@@ -61,7 +61,7 @@ namespace Signorini
                     pcout)
       , load_step(parameters,
                   system,
-                  materials,
+                  bulk,
                   boundary_conditions,
                   contact,
                   linear_solver,
@@ -139,6 +139,17 @@ namespace Signorini
                          "= " +
                          std::to_string(id) +
                          "'. Add one (and raise 'Number of materials').");
+    for (unsigned int k = 0; k < parameters.materials.size(); ++k)
+      if (parameters.adaptivity.cycles > 0 &&
+          materials.at(parameters.materials[k].material_id)
+              ->n_history_values() > 0)
+        throw InputError(
+          "subsection 'Adaptive refinement', parameter 'Cycles': material " +
+          std::to_string(k + 1) + " ('" + parameters.materials[k].model +
+          "') keeps a history at its quadrature points, which adaptive "
+          "refinement does not carry to the new mesh yet. Set 'Cycles = 0' "
+          "and refine the mesh where the plastic zone is expected "
+          "(Geometry/Local refinements, Refinement region).");
   }
 
 
@@ -152,6 +163,12 @@ namespace Signorini
                                  system.dof_handler,
                                  system.locally_owned);
     equilibrium.setup();
+    unsigned int n_history = 0;
+    for (const auto &[id, material] : materials)
+      n_history = std::max(n_history, material->n_history_values());
+    system.history.initialize(system.triangulation,
+                              bulk.quadrature(),
+                              n_history);
     if (contact.active())
       linear_solver.set_multipliers(
         system.dof_handler.n_dofs(),

@@ -1,3 +1,4 @@
+#include <signorini/core/errors.h>
 #include <signorini/material/interface.h>
 
 namespace Signorini
@@ -37,7 +38,15 @@ namespace Signorini
           auto model = Registry<dim>::instance().create(m.model, where);
           model->set_elastic_constants(m.youngs_modulus, m.poissons_ratio);
           prm.enter_subsection("Material " + std::to_string(k + 1));
-          model->parse_parameters(prm);
+          try
+            {
+              model->parse_parameters(prm);
+            }
+          catch (const InputError &e)
+            {
+              throw InputError("subsection 'Materials/Material " +
+                               std::to_string(k + 1) + "', " + e.what());
+            }
           prm.leave_subsection();
           result.emplace(m.material_id, std::move(model));
         }

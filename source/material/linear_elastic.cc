@@ -7,8 +7,9 @@ namespace Signorini
     template <int dim>
     void
     LinearElastic<dim>::evaluate(const SymmetricTensor<2, 3> &strain,
-                                 SymmetricTensor<2, 3>       &stress,
-                                 SymmetricTensor<4, 3>       *tangent) const
+                                 const ArrayView<const double> &,
+                                 SymmetricTensor<2, 3> &stress,
+                                 SymmetricTensor<4, 3> *tangent) const
     {
       const double lambda = this->lambda, mu = this->mu;
       stress =

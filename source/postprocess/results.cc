@@ -207,6 +207,7 @@ namespace Signorini
                                system.dof_handler,
                                system.solution,
                                materials,
+                               system.history,
                                contact.active() ? &contact : nullptr,
                                system.state,
                                force_scale,

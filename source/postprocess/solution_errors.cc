@@ -139,10 +139,18 @@ namespace Signorini
                   projected ? projection.value(theta_bar, quadrature.point(q)) :
                               0.;
                 SymmetricTensor<2, 3> stress;
+                // A model with history: that of the nearest bulk point.
+                const unsigned int n_history = material.n_history_values();
                 material.evaluate(Bulk::point_strain<dim>(eps_h[q],
                                                           hoop,
                                                           projected ? &theta :
                                                                       nullptr),
+                                  n_history == 0 ?
+                                    ArrayView<const double>() :
+                                    data.history.at(cell,
+                                                    data.history.nearest_point(
+                                                      quadrature.point(q)),
+                                                    n_history),
                                   stress,
                                   nullptr);
                 const auto sigma = Material::from_3d<dim>(stress);

@@ -76,6 +76,7 @@ namespace Signorini
       const StressPostprocessor<dim> stress(
         data.mapping,
         data.materials,
+        data.history,
         data.parameters.axisymmetric,
         data.parameters.projected_volumetric_strain ? &fe : nullptr,
         &data.displacement);

@@ -2,6 +2,7 @@
 #define signorini_bulk_assembler_h
 
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
@@ -10,7 +11,9 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <signorini/core/parameters.h>
+#include <signorini/material/history.h>
 #include <signorini/material/interface.h>
+#include <signorini/material/projected_volumetric_strain.h>
 
 #include <map>
 #include <memory>
@@ -30,6 +33,10 @@
  * projected volumetric strain theta_bar (Material::ProjectedVolumetricStrain):
  *   eps_bar = eps + (theta_bar - tr eps) / 3 I,
  * for every model alike; the Jacobian uses the matching B-bar operator.
+ *
+ * Models with history (Material::History) see the values committed at the
+ * end of the last converged step; update_history() commits new ones from a
+ * converged solution.
  */
 namespace Signorini
 {
@@ -76,17 +83,66 @@ namespace Signorini
        * Jacobian into @p matrix (if not null), through @p constraints; adds
        * F_int and F_ext into @p internal_force and @p external_force (no
        * constraints: the reactions are their sums at the Dirichlet DoFs).
+       * The models read their committed @p history.
        */
       void
       assemble(const DoFHandler<dim>               &dof_handler,
                const TrilinosWrappers::MPI::Vector &solution,
+               const Material::History<dim>        &history,
                const AffineConstraints<double>     &constraints,
                TrilinosWrappers::SparseMatrix      *matrix,
                TrilinosWrappers::MPI::Vector       &rhs,
                TrilinosWrappers::MPI::Vector       &internal_force,
                TrilinosWrappers::MPI::Vector       &external_force) const;
 
+      /** Commits the history of every quadrature point from the converged
+       * @p solution (ghosted); nothing without a model with history. */
+      void
+      update_history(const DoFHandler<dim>               &dof_handler,
+                     const TrilinosWrappers::MPI::Vector &solution,
+                     Material::History<dim>              &history) const;
+
+      /** The bulk quadrature rule (that of the history). */
+      const Quadrature<dim> &
+      quadrature() const
+      {
+        return cell_quadrature;
+      }
+
     private:
+      /** The kinematics of one cell: FEValues, the 3D strain of each shape
+       * function at each point (B, B-bar with the projection), the volume
+       * element dV (2 pi r dA axisymmetric) and the 3D strain of the
+       * solution at each point. */
+      struct CellKinematics
+      {
+        CellKinematics(const Mapping<dim>    &mapping,
+                       const FESystem<dim>   &fe,
+                       const Quadrature<dim> &quadrature,
+                       const bool             axisymmetric);
+
+        FEValues<dim>                                   fe_values;
+        Material::ProjectedVolumetricStrain<dim>        projection;
+        std::vector<std::vector<SymmetricTensor<2, 3>>> B;
+        std::vector<double>                             dV;
+        std::vector<SymmetricTensor<2, 3>>              strain;
+        std::vector<SymmetricTensor<2, dim>>            gradients;
+        std::vector<Tensor<1, dim>>                     u_values;
+        std::vector<double>                             theta_i, dtheta_bar;
+        Vector<double>                                  local_u, theta_bar;
+      };
+
+      /** Fills @p k for @p cell and @p solution. */
+      void
+      cell_kinematics(
+        const typename DoFHandler<dim>::active_cell_iterator &cell,
+        const TrilinosWrappers::MPI::Vector                  &solution,
+        CellKinematics                                       &k) const;
+
+      /** The body force of the cell of @p k into @p cell_fext. */
+      void
+      add_body_force(const CellKinematics &k, Vector<double> &cell_fext) const;
+
       /** Neumann tractions of the boundary faces of @p cell into
        * @p cell_fext. */
       void
@@ -100,6 +156,7 @@ namespace Signorini
       const Materials<dim>                                    &materials;
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann;
       const FunctionParser<dim>                               &body_force;
+      const QGauss<dim>                                        cell_quadrature;
     };
   } // namespace Bulk
 } // namespace Signorini

@@ -13,6 +13,7 @@
 
 #include <signorini/bulk/boundary_conditions.h>
 #include <signorini/contact/contact_problem.h>
+#include <signorini/material/history.h>
 #include <signorini/solver/linear_solver.h>
 
 /**
@@ -98,6 +99,9 @@ namespace Signorini
     // Without constraints, on u DoFs [N].
     TrilinosWrappers::MPI::Vector internal_force, external_force;
     TrilinosWrappers::MPI::Vector contact_force;
+    // The materials' history at the bulk quadrature points, committed at
+    // the last converged (sub)step (Bulk::Assembler::update_history).
+    Material::History<dim> history;
 
     double model_size = 0; // bounding-box diagonal of the mesh [m]
   };

@@ -63,6 +63,14 @@ namespace Signorini
       return contact_statistics;
     }
 
+    /** Every material is linear without history (Newton's step at fixed
+     * contact statuses is then exact). */
+    bool
+    linear_bulk() const
+    {
+      return materials_linear;
+    }
+
     /** The largest relative error of the Jacobian checks so far ('Newton/
      * Check Jacobian'). */
     double

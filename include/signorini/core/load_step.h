@@ -31,7 +31,7 @@ namespace Signorini
   public:
     LoadStep(const Parameters              &parameters,
              DiscreteSystem<dim>           &system,
-             Bulk::Materials<dim>          &materials,
+             const Bulk::Assembler<dim>    &bulk,
              Bulk::BoundaryConditions<dim> &boundary_conditions,
              Contact::ContactProblem<dim>  &contact,
              Solver::LinearSolver<dim>     &linear_solver,
@@ -115,7 +115,7 @@ namespace Signorini
 
     const Parameters              &parameters;
     DiscreteSystem<dim>           &system;
-    Bulk::Materials<dim>          &materials;
+    const Bulk::Assembler<dim>    &bulk;
     Bulk::BoundaryConditions<dim> &boundary_conditions;
     Contact::ContactProblem<dim>  &contact;
     Solver::LinearSolver<dim>     &linear_solver;

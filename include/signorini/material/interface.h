@@ -1,6 +1,7 @@
 #ifndef signorini_material_interface_h
 #define signorini_material_interface_h
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/types.h>
@@ -29,6 +30,15 @@
  * models; a model declares the parameters of its own in a subsection of
  * 'Material k' named after it, capitalised (declare_parameters()), and
  * reads them in parse_parameters().
+ *
+ * A model with history (plasticity) declares how many values each
+ * quadrature point keeps (n_history_values(); they start at 0). evaluate()
+ * reads the values committed at the end of the last converged load step and
+ * never changes them; update_history() computes the new values from the
+ * converged strain, and the bulk assembler stores them only when a load
+ * step (or sub-step) has converged (Bulk::Assembler::update_history()).
+ * Line-search trials, the Jacobian check and cut steps therefore never
+ * reach the history.
  *
  * A new model: a class derived from Interface<dim> with a static
  * declare_parameters(ParameterHandler &), registered in its source file
@@ -104,12 +114,34 @@ namespace Signorini
 
       /**
        * The Cauchy stress at a point for the 3D small strain @p strain
-       * [Pa], and if @p tangent is given its derivative d sigma / d eps.
+       * [Pa], and if @p tangent is given its derivative d sigma / d eps
+       * (the consistent tangent of a model with history). @p history: the
+       * point's committed values (n_history_values() of them; empty for a
+       * model without history).
        */
       virtual void
-      evaluate(const SymmetricTensor<2, 3> &strain,
-               SymmetricTensor<2, 3>       &stress,
-               SymmetricTensor<4, 3>       *tangent) const = 0;
+      evaluate(const SymmetricTensor<2, 3>   &strain,
+               const ArrayView<const double> &history,
+               SymmetricTensor<2, 3>         &stress,
+               SymmetricTensor<4, 3>         *tangent) const = 0;
+
+      /** Number of history values per quadrature point. Default: 0. */
+      virtual unsigned int
+      n_history_values() const
+      {
+        return 0;
+      }
+
+      /** The history after the converged strain @p strain: @p history
+       * holds the committed values on entry and the new ones on return.
+       * Default (no history): nothing. */
+      virtual void
+      update_history(const SymmetricTensor<2, 3> &strain,
+                     const ArrayView<double>     &history) const
+      {
+        (void)strain;
+        (void)history;
+      }
 
       /** True if the stress is a linear function of the strain without
        * history: Newton's step at fixed contact statuses is then exact. */
@@ -122,20 +154,6 @@ namespace Signorini
       representative_modulus() const
       {
         return E;
-      }
-
-      /**
-       * History of the quadrature points (inelastic models): commit() when
-       * a load step has converged, roll_back() when it is cut (back to the
-       * last committed state). A model without history does nothing.
-       */
-      virtual void
-      commit()
-      {
-      }
-      virtual void
-      roll_back()
-      {
       }
 
       double

@@ -25,8 +25,9 @@ namespace Signorini
 
       void
       evaluate(const SymmetricTensor<2, 3> &strain,
-               SymmetricTensor<2, 3>       &stress,
-               SymmetricTensor<4, 3>       *tangent) const override;
+               const ArrayView<const double> &,
+               SymmetricTensor<2, 3> &stress,
+               SymmetricTensor<4, 3> *tangent) const override;
 
       bool
       is_linear() const override

@@ -10,6 +10,7 @@
 
 #include <signorini/core/parameters.h>
 #include <signorini/core/plugins.h>
+#include <signorini/material/history.h>
 #include <signorini/material/interface.h>
 
 #include <functional>
@@ -132,6 +133,8 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector &displacement;
       const std::map<types::material_id,
                      std::unique_ptr<Material::Interface<dim>>> &materials;
+      // The materials' committed history at the bulk quadrature points.
+      const Material::History<dim> &history;
       // nullptr without contact pairs; else with the system vector
       // (u | lambda | Lambda) of its multipliers.
       const Contact::ContactProblem<dim>  *contact;

@@ -18,6 +18,8 @@
  * In 2D the stress normal to the plane is written too (stress_zz, or
  * stress_hoop axisymmetric). The strain is that of the equilibrium
  * (Bulk::point_strain(): with B-bar its volumetric part is theta_bar).
+ * A model with history evaluates with the committed history of the bulk
+ * quadrature point nearest to the output point.
  */
 namespace Signorini
 {
@@ -36,11 +38,13 @@ namespace Signorini
       StressPostprocessor(
         const Mapping<dim>                  &mapping,
         const Bulk::Materials<dim>          &materials,
+        const Material::History<dim>        &history,
         const bool                           axisymmetric = false,
         const FiniteElement<dim>            *projected    = nullptr,
         const TrilinosWrappers::MPI::Vector *solution     = nullptr)
           : mapping(mapping)
           , materials(materials)
+          , history(history)
           , axisymmetric(axisymmetric)
           , projected(projected)
           , solution(solution)
@@ -73,7 +77,7 @@ namespace Signorini
       UpdateFlags
       get_needed_update_flags() const override
       {
-        return axisymmetric || projected ?
+        return axisymmetric || projected || history.active() ?
                  update_gradients | update_values | update_quadrature_points :
                  update_gradients;
       }
@@ -117,20 +121,27 @@ namespace Signorini
                 strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
                                       inputs.solution_gradients[q][j][i]);
             // Hoop strain u_r / r; on the axis its limit du_r/dr.
-            const double          r    = inputs.evaluation_points.empty() ?
-                                           0. :
-                                           inputs.evaluation_points[q][0];
-            const double          hoop = !axisymmetric ? 0. :
-                                         r > 0 ? inputs.solution_values[q][0] / r :
-                                                 inputs.solution_gradients[q][0][0];
+            const double          r         = inputs.evaluation_points.empty() ?
+                                                0. :
+                                                inputs.evaluation_points[q][0];
+            const double          hoop      = !axisymmetric ? 0. :
+                                              r > 0 ? inputs.solution_values[q][0] / r :
+                                                      inputs.solution_gradients[q][0][0];
+            const unsigned int    n_history = material.n_history_values();
             SymmetricTensor<2, 3> stress;
-            material.evaluate(Bulk::point_strain<dim>(strain,
-                                                      hoop,
-                                                      projected ?
-                                                        &volumetric[q] :
-                                                        nullptr),
-                              stress,
-                              nullptr);
+            material.evaluate(
+              Bulk::point_strain<dim>(strain,
+                                      hoop,
+                                      projected ? &volumetric[q] : nullptr),
+              n_history == 0 ?
+                ArrayView<const double>() :
+                history.at(cell,
+                           history.nearest_point(
+                             mapping.transform_real_to_unit_cell(
+                               cell, inputs.evaluation_points[q])),
+                           n_history),
+              stress,
+              nullptr);
             unsigned int k = 0;
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = i; j < dim; ++j)
@@ -144,6 +155,7 @@ namespace Signorini
     private:
       const Mapping<dim>                  &mapping;
       const Bulk::Materials<dim>          &materials;
+      const Material::History<dim>        &history;
       const bool                           axisymmetric;
       const FiniteElement<dim>            *projected;
       const TrilinosWrappers::MPI::Vector *solution;
