@@ -148,13 +148,13 @@ namespace Signorini
     boundary_conditions.set_load_time(time);
     if (!resume)
       system.state_step_start = system.state;
-    // Extrapolated predictor: the last converged increment, scaled to this
-    // step's size; Dirichlet values then override their entries. One
-    // insert per entry: an add after an insert would leave the ranks with
-    // and without DoFs in different compress modes (a deadlock).
+    // Extrapolated predictor: the last converged increment, scaled
+    // (predictor_factor()); Dirichlet values then override their entries.
+    // One insert per entry: an add after an insert would leave the ranks
+    // with and without DoFs in different compress modes (a deadlock).
     const double factor =
       !resume && parameters.load_stepping.extrapolate && last_step_size > 0 ?
-        (time - step_start_time) / last_step_size :
+        predictor_factor(time - step_start_time) :
         0.;
     TrilinosWrappers::MPI::Vector owned(system.owned_system,
                                         system.mpi_communicator);
@@ -165,6 +165,38 @@ namespace Signorini
     system.constraints_values.distribute(owned);
     system.state = owned;
     system.update_solution();
+  }
+
+
+  // The scale of the last converged increment in the extrapolated
+  // predictor: the factor that best matches its prescribed (Dirichlet)
+  // values to this step's, in the least-squares sense over the DoFs with a
+  // prescribed value. For values proportional along the path it is the
+  // ratio of the step sizes; where the prescribed motion reverses it is
+  // negative, and where it turns at a right angle near 0, so the predictor
+  // never continues a motion the loading has left (a plastic body would
+  // yield further in the predictor where it unloads). Where no prescribed
+  // value moved in the last increment (loads or obstacles drive the
+  // scene): the ratio of the step sizes, @p step_size over the last.
+  template <int dim>
+  double
+  LoadStep<dim>::predictor_factor(const double step_size) const
+  {
+    const auto &constraints = system.constraints_values;
+    double      new_old = 0, old_old = 0;
+    for (const auto i : system.locally_owned)
+      if (constraints.is_constrained(i) &&
+          constraints.get_constraint_entries(i)->empty())
+        {
+          const double d_new =
+            constraints.get_inhomogeneity(i) - system.state[i];
+          const double d_old = last_increment[i];
+          new_old += d_new * d_old;
+          old_old += d_old * d_old;
+        }
+    new_old = Utilities::MPI::sum(new_old, system.mpi_communicator);
+    old_old = Utilities::MPI::sum(old_old, system.mpi_communicator);
+    return old_old > 0 ? new_old / old_old : step_size / last_step_size;
   }
 
 

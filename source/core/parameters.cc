@@ -478,9 +478,13 @@ namespace Signorini
                       "extrapolated",
                       Patterns::Selection("constant|extrapolated"),
                       "First iterate of a load step: the last converged "
-                      "state plus the increment of the last converged step "
-                      "scaled to the new step size, displacements and "
-                      "multipliers (extrapolated: starts sliding contacts "
+                      "state plus the increment of the last converged step, "
+                      "displacements and multipliers, scaled so that its "
+                      "Dirichlet values best match the new step's (the "
+                      "ratio of the step sizes for proportional loads, "
+                      "negative where the prescribed motion reverses; "
+                      "without moving Dirichlet values, the ratio of the "
+                      "step sizes) (extrapolated: starts sliding contacts "
                       "with their slip direction and a growing contact "
                       "zone with its pressures), or the last converged "
                       "state (constant). Dirichlet values are those of the "

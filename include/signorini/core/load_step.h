@@ -90,6 +90,10 @@ namespace Signorini
     /** Loads, Dirichlet values and the first iterate of a load step. */
     void
     start(const double time, const double step_start_time, const bool resume);
+    /** The scale of the last converged increment in the extrapolated
+     * predictor of a step of size @p step_size. */
+    double
+    predictor_factor(const double step_size) const;
     /** A pairing of the geometric loop and its sparsity pattern. */
     void
     pair(const double time, const double step_start_time);
