@@ -172,6 +172,39 @@ namespace Signorini
 
 
   template <int dim>
+  bool
+  DiscreteSystem<dim>::make_first_update_constraints(
+    const Contact::ContactProblem<dim>  &contact,
+    const TrilinosWrappers::MPI::Vector &state_before)
+  {
+    constraints_first.clear();
+    constraints_first.reinit(relevant_system);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints_first);
+    double offset = 0, increment = 0;
+    for (const auto i : locally_relevant)
+      if (constraints_values.is_constrained(i) &&
+          !constraints_hanging.is_constrained(i))
+        {
+          const double value = constraints_values.get_inhomogeneity(i);
+          constraints_first.add_line(i);
+          constraints_first.set_inhomogeneity(i, value - state[i]);
+          if (locally_owned.is_element(i))
+            {
+              offset = std::max(offset, std::abs(value - state[i]));
+              increment =
+                std::max(increment, std::abs(value - state_before[i]));
+            }
+        }
+    if (contact.active() && owned_system.size() > dof_handler.n_dofs())
+      contact.contact_surfaces().add_constraint_lines(constraints_first);
+    constraints_first.close();
+    offset    = Utilities::MPI::max(offset, mpi_communicator);
+    increment = Utilities::MPI::max(increment, mpi_communicator);
+    return offset > 1e-10 * increment;
+  }
+
+
+  template <int dim>
   void
   DiscreteSystem<dim>::update_solution()
   {

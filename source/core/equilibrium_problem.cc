@@ -59,6 +59,8 @@ namespace Signorini
   void
   EquilibriumProblem<dim>::setup()
   {
+    // A new mesh: no first update of the old one is pending.
+    first_update = nullptr;
     rigid_modes.setup(system.mapping,
                       system.dof_handler,
                       system.constraints_update,
@@ -115,6 +117,7 @@ namespace Signorini
     e.linear_at_fixed_statuses =
       materials_linear &&
       (!contact.active() || contact.linear_at_fixed_statuses());
+    e.values_pending = first_update != nullptr;
     return e;
   }
 
@@ -208,8 +211,11 @@ namespace Signorini
       linear_solver.solve(system.matrix, step.update, system.newton_rhs);
     report.counts.krylov_iterations += krylov;
     report.counts.krylov_max = std::max(report.counts.krylov_max, krylov);
-    system.constraints_update.distribute(step.update);
-    step.exact = krylov == 0 && n_early == 0;
+    (first_update ? *first_update : system.constraints_update)
+      .distribute(step.update);
+    step.prescribes_values = first_update != nullptr;
+    first_update           = nullptr;
+    step.exact             = krylov == 0 && n_early == 0;
     return step;
   }
 
@@ -270,10 +276,14 @@ namespace Signorini
     system.internal_force = 0;
     system.external_force = 0;
 
+    // The Jacobian of a first update that moves prescribed values carries
+    // their increments into the right-hand side (-K_fd delta).
+    const AffineConstraints<double> &constraints =
+      with_matrix && first_update ? *first_update : system.constraints_update;
     bulk.assemble(system.dof_handler,
                   system.solution,
                   system.history,
-                  system.constraints_update,
+                  constraints,
                   with_matrix ? &system.matrix : nullptr,
                   system.newton_rhs,
                   system.internal_force,
@@ -286,7 +296,7 @@ namespace Signorini
         contact_statistics =
           contact.assemble(system.state,
                            system.state_step_start,
-                           system.constraints_update,
+                           constraints,
                            with_matrix ? &system.matrix : nullptr,
                            system.newton_rhs,
                            system.contact_force,

@@ -162,8 +162,29 @@ namespace Signorini
       owned[i] = factor != 0 ? system.state[i] + factor * last_increment[i] :
                                static_cast<double>(system.state[i]);
     owned.compress(VectorOperation::insert);
-    system.constraints_values.distribute(owned);
-    system.state = owned;
+    // A nonlinear bulk is evaluated at equilibrium-like states only: the
+    // prescribed values are reached by the first Newton update, which
+    // carries their increments through the Jacobian at the predictor (as
+    // deal.II's step-44 applies its Dirichlet increments). Moving the
+    // Dirichlet nodes alone would strain the cells next to them as no
+    // equilibrium does, and a plastic body would yield there in the
+    // predictor. The predictor satisfies the homogeneous relations (hanging
+    // nodes, multiplier lines) as a combination of converged states.
+    bool first_update = false;
+    if (!equilibrium.linear_bulk())
+      {
+        system.state = owned;
+        first_update =
+          system.make_first_update_constraints(contact,
+                                               system.state_step_start);
+      }
+    if (!first_update)
+      {
+        system.constraints_values.distribute(owned);
+        system.state = owned;
+      }
+    equilibrium.impose_in_first_update(
+      first_update ? &system.constraints_first : nullptr);
     system.update_solution();
   }
 
@@ -385,6 +406,7 @@ namespace Signorini
     report.append_newton_history();
     system.state = last_converged;
     system.update_solution();
+    equilibrium.impose_in_first_update(nullptr); // the retry starts anew
     // Back to the initial state: the retry needs the initial multipliers
     // again ('Initial status').
     if (none_converged)

@@ -204,7 +204,7 @@ namespace Signorini
           LinearisedStep step                 = problem.solve_linearised(it);
           held_motions                        = step.held_motions;
           TrilinosWrappers::MPI::Vector owned = problem.iterate();
-          if (parameters.line_search_steps > 0)
+          if (parameters.line_search_steps > 0 && !step.prescribes_values)
             {
               search_pending  = true;
               search_base     = owned;
@@ -290,8 +290,8 @@ namespace Signorini
       // the converged iterate is released; Newton goes on from there.
       verdict.release =
         residual_small && statuses_settled && evaluation.frozen_contradicted;
-      verdict.converged =
-        residual_small && statuses_settled && !verdict.release;
+      verdict.converged = residual_small && statuses_settled &&
+                          !verdict.release && !evaluation.values_pending;
       return verdict;
     }
 

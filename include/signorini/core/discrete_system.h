@@ -57,6 +57,19 @@ namespace Signorini
           Solver::LinearSolver<dim>     &linear_solver,
           ConditionalOStream            &pcout);
 
+    /**
+     * The constraints of a first Newton update that takes the current
+     * state to the Dirichlet values of make_constraints() (its
+     * inhomogeneities are their differences), with the hanging-node and
+     * contact lines. False if the state has those values already, to
+     * 1e-10 of the step's largest prescribed increment from
+     * @p state_before.
+     */
+    bool
+    make_first_update_constraints(
+      const Contact::ContactProblem<dim>  &contact,
+      const TrilinosWrappers::MPI::Vector &state_before);
+
     /** Hanging nodes, Dirichlet values at @p time and the contact
      * constraint lines. */
     void
@@ -90,6 +103,9 @@ namespace Signorini
     AffineConstraints<double> constraints_values;  // hanging + Dirichlet(t)
     AffineConstraints<double> constraints_update;  // hanging + zero Dirichlet
     AffineConstraints<double> constraints_hanging; // hanging nodes only
+    // hanging + Dirichlet(t) - state: the first update of a load step that
+    // moves to the prescribed values (make_first_update_constraints).
+    AffineConstraints<double> constraints_first;
 
     TrilinosWrappers::SparseMatrix matrix;
     TrilinosWrappers::MPI::Vector  solution;         // ghosted u of the iterate

@@ -63,6 +63,15 @@ namespace Signorini
       return contact_statistics;
     }
 
+    /** The next linearised solve moves the iterate to the prescribed
+     * values of @p constraints (its inhomogeneities are the remaining
+     * differences); nullptr: none pending. */
+    void
+    impose_in_first_update(const AffineConstraints<double> *constraints)
+    {
+      first_update = constraints;
+    }
+
     /** Every material is linear without history (Newton's step at fixed
      * contact statuses is then exact). */
     bool
@@ -135,9 +144,11 @@ namespace Signorini
 
     // True if every material is linear without history (Newton's exact
     // step at fixed contact statuses).
-    bool                       materials_linear = true;
-    Solver::RigidModes<dim>    rigid_modes;
-    Contact::ContactStatistics contact_statistics;
+    bool materials_linear = true;
+    // The constraints of a pending first update (impose_in_first_update).
+    const AffineConstraints<double> *first_update = nullptr;
+    Solver::RigidModes<dim>          rigid_modes;
+    Contact::ContactStatistics       contact_statistics;
     // || |K| |x| || of the last Jacobian K at the state x it was assembled
     // at: the round-off scale of the internal force (evaluate()).
     double matrix_roundoff    = 0;

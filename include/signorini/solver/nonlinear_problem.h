@@ -41,12 +41,18 @@ namespace Signorini
       /** The equations are linear once the statuses are fixed (a full
        * direct step then leaves only round-off). */
       bool linear_at_fixed_statuses = false;
+      /** Prescribed values the iterate has not reached yet (the first
+       * update of the solve takes it there): never converged. */
+      bool values_pending = false;
     };
 
     /** The result of the linearised solve at an iterate. */
     struct LinearisedStep
     {
-      TrilinosWrappers::MPI::Vector update; // owned, homogeneous constraints
+      TrilinosWrappers::MPI::Vector update; // owned
+      /** The update moves prescribed values (the pending ones of the
+       * evaluation): it is taken whole, never searched along. */
+      bool prescribes_values = false;
       /** A direct solve of the Jacobian at the iterate's own statuses (no
        * status opened for this solve only). */
       bool exact = false;
