@@ -177,6 +177,7 @@ namespace Signorini
             cell_fext                    = 0;
             const auto        &material  = *materials.at(cell->material_id());
             const unsigned int n_history = material.n_history_values();
+            const auto         cell_history = history.on_cell(cell, n_history);
             cell_kinematics(cell, solution, k);
             add_body_force(k, cell_fext);
 
@@ -186,7 +187,7 @@ namespace Signorini
                 SymmetricTensor<2, 3> stress;
                 SymmetricTensor<4, 3> C;
                 material.evaluate(k.strain[q],
-                                  history.at(cell, q, n_history),
+                                  cell_history[q],
                                   stress,
                                   matrix ? &C : nullptr);
                 const auto &B = k.B[q];
@@ -235,10 +236,10 @@ namespace Signorini
             const auto  n_history = material.n_history_values();
             if (n_history == 0)
               continue;
+            const auto cell_history = history.on_cell(cell, n_history);
             cell_kinematics(cell, solution, k);
             for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
-              material.update_history(k.strain[q],
-                                      history.at(cell, q, n_history));
+              material.update_history(k.strain[q], cell_history[q]);
           }
     }
 

@@ -296,6 +296,10 @@ namespace Signorini
                                                   "xyz"[i % dim] :
                                                 std::to_string(i + 1));
       inputs.push_back(stress);
+      inputs.push_back(
+        {"subsection 'Reference solution', parameter 'History quantity'",
+         ref.history,
+         {ref.history_name}});
       // '*': a component the check leaves out.
       std::vector<std::string> force = ref.contact_force;
       for (auto &e : force)

@@ -131,6 +131,14 @@ namespace Signorini
                       "1",
                       Patterns::Double(1e-300),
                       "Radius of a ball or cylinder segment [m].");
+    prm.declare_entry("Inner radius",
+                      "0",
+                      Patterns::Double(0),
+                      "Inner radius of a hollow ball or cylinder segment [m] "
+                      "(a shell or tube), below 'Radius'; 0: solid. The inner "
+                      "curved face is the last face group: ball segment 1 "
+                      "(full), 2 (half), 3 (quarter, 2D) or 4 (quarter, 3D); "
+                      "cylinder segment (3D) 5.");
     prm.declare_entry("Segment",
                       "half",
                       segments.pattern(),
@@ -183,6 +191,7 @@ namespace Signorini
     subdivisions = to_unsigned(prm.get("Subdivisions"));
     centre       = to_doubles(prm.get("Centre"));
     radius       = prm.get_double("Radius");
+    inner_radius = prm.get_double("Inner radius");
     segment      = segments.value(prm.get("Segment"));
     length       = prm.get_double("Length");
     mesh_file    = prm.get("Mesh file");

@@ -231,6 +231,16 @@ namespace Signorini
                         "row by row, separated by ';'. Empty: none. The run "
                         "prints the largest relative error at quadrature "
                         "points.");
+      prm.declare_entry(
+        "History quantity",
+        "",
+        Patterns::Anything(),
+        "Exact value of a history quantity of the materials (their "
+        "history_output_names(): J2 plasticity has "
+        "equivalent_plastic_strain), as 'name: expression' in x, y, z, t. "
+        "Empty: none. The run prints its largest error over the largest "
+        "reference value, at the bulk quadrature points of the cells whose "
+        "material has it.");
       prm.declare_entry("Tolerance",
                         "1e-10",
                         Patterns::Double(0),
@@ -433,8 +443,8 @@ namespace Signorini
   bool
   ReferenceParameters::any() const
   {
-    return !displacement.empty() || !stress.empty() || max_pressure > 0 ||
-           half_width > 0 || !contact_pressure.empty() ||
+    return !displacement.empty() || !stress.empty() || !history.empty() ||
+           max_pressure > 0 || half_width > 0 || !contact_pressure.empty() ||
            !point_values.empty() || action_reaction_tolerance > 0 ||
            slip_law_tolerance > 0 || !contact_force.empty() ||
            gap_tolerance > 0 || friction_ratio > 0 ||
@@ -446,8 +456,23 @@ namespace Signorini
   ReferenceParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Reference solution");
-    displacement                 = split_expressions(prm.get("Displacement"));
-    stress                       = split_expressions(prm.get("Stress"));
+    displacement = split_expressions(prm.get("Displacement"));
+    stress       = split_expressions(prm.get("Stress"));
+    history_name.clear();
+    history.clear();
+    if (const std::string text = Utilities::trim(prm.get("History quantity"));
+        !text.empty())
+      {
+        const auto colon = text.find(':');
+        if (colon == std::string::npos)
+          throw InputError("subsection 'Reference solution', parameter "
+                           "'History quantity': cannot read '" +
+                           text +
+                           "'. Write 'name: expression', e.g. "
+                           "'equivalent_plastic_strain: 1e-3*t'.");
+        history_name = Utilities::trim(text.substr(0, colon));
+        history      = {Utilities::trim(text.substr(colon + 1))};
+      }
     tolerance                    = prm.get_double("Tolerance");
     max_pressure                 = prm.get_double("Maximum contact pressure");
     pressure_tolerance           = prm.get_double("Pressure tolerance");

@@ -150,6 +150,34 @@ namespace Signorini
           "refinement does not carry to the new mesh yet. Set 'Cycles = 0' "
           "and refine the mesh where the plastic zone is expected "
           "(Geometry/Local refinements, Refinement region).");
+    check_history_reference();
+  }
+
+
+  // 'Reference solution/History quantity' names a quantity that some
+  // material of the run has.
+  template <int dim>
+  void
+  Simulation<dim>::check_history_reference() const
+  {
+    const std::string &name = parameters.reference.history_name;
+    if (name.empty())
+      return;
+    std::string known;
+    for (const auto &[id, material] : materials)
+      for (const auto &n : material->history_output_names())
+        {
+          if (n == name)
+            return;
+          known += (known.empty() ? "" : ", ") + n;
+        }
+    throw InputError("subsection 'Reference solution', parameter 'History "
+                     "quantity': no material of the run has a history "
+                     "quantity '" +
+                     name + "'" +
+                     (known.empty() ? std::string(" (none has any)") :
+                                      " (they have: " + known + ")") +
+                     ". Correct the name or remove the reference.");
   }
 
 

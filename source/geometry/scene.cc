@@ -118,46 +118,6 @@ namespace Signorini
             }
       }
 
-      // Disc (2D) or ball (3D) segment with the curved side below the
-      // centre. deal.II makes half balls cut at x = 0 (kept x > 0) and
-      // quarter balls in the positive orthant; a rotation by -90 degrees
-      // about z turns +x into -y.
-      template <int dim>
-      void
-      make_ball_segment(Triangulation<dim> &tria,
-                        const Segment       segment,
-                        const double        radius)
-      {
-        if (segment == Segment::full)
-          GridGenerator::hyper_ball(tria, Point<dim>(), radius);
-        else if (segment == Segment::half)
-          GridGenerator::half_hyper_ball(tria, Point<dim>(), radius);
-        else
-          GridGenerator::quarter_hyper_ball(tria, Point<dim>(), radius);
-        // 0 = curved; hyper_ball may colour nothing else.
-        for (const auto &face : tria.active_face_iterators())
-          if (face->at_boundary() && face->boundary_id() != 0)
-            face->set_boundary_id(1);
-        if constexpr (dim == 2)
-          GridTools::rotate(-numbers::PI / 2, tria);
-        else
-          GridTools::rotate(Tensor<1, 3>({0., 0., 1.}), -numbers::PI / 2, tria);
-        // Flat faces after the rotation: 1 = the top (y = centre), 2 = the
-        // symmetry plane x = centre, 3 = the symmetry plane z = centre.
-        const double tol = 1e-10 * radius;
-        for (const auto &face : tria.active_face_iterators())
-          if (face->at_boundary() && face->boundary_id() != 0)
-            {
-              const Point<dim> c = face->center();
-              if (std::abs(c[1]) < tol)
-                face->set_boundary_id(1);
-              else if (std::abs(c[0]) < tol)
-                face->set_boundary_id(2);
-              else if (dim == 3 && std::abs(c[dim - 1]) < tol)
-                face->set_boundary_id(3);
-            }
-      }
-
       // Number of face groups of a ball segment (see make_ball_segment).
       unsigned int
       n_segment_faces(const Segment segment, const unsigned int dim)
@@ -165,6 +125,91 @@ namespace Signorini
         return segment == Segment::full ? 1 :
                segment == Segment::half ? 2 :
                                           (dim == 2 ? 3 : 4);
+      }
+
+      // The local face group of the inner curved face of a hollow segment:
+      // after the flat faces of a ball segment, after the end caps of a 3D
+      // cylinder segment; numbers::invalid_unsigned_int for a solid one.
+      unsigned int
+      inner_face_group(const BodyParameters &body, const unsigned int dim)
+      {
+        if (body.inner_radius == 0)
+          return numbers::invalid_unsigned_int;
+        return (dim == 3 && body.shape == BodyShape::cylinder_segment) ?
+                 5 :
+                 n_segment_faces(body.segment, dim);
+      }
+
+      // deal.II's disc/ball or shell segment: halves cut at x = 0 (kept
+      // x > 0), quarters in the positive quadrant/octant, centred at 0.
+      template <int dim>
+      void
+      make_deal_ii_segment(Triangulation<dim> &tria,
+                           const Segment       segment,
+                           const double        radius,
+                           const double        inner_radius)
+      {
+        const Point<dim> o;
+        if (inner_radius == 0)
+          {
+            if (segment == Segment::full)
+              GridGenerator::hyper_ball(tria, o, radius);
+            else if (segment == Segment::half)
+              GridGenerator::half_hyper_ball(tria, o, radius);
+            else
+              GridGenerator::quarter_hyper_ball(tria, o, radius);
+          }
+        else if (segment == Segment::full)
+          GridGenerator::hyper_shell(tria, o, inner_radius, radius);
+        else if (segment == Segment::half)
+          GridGenerator::half_hyper_shell(tria, o, inner_radius, radius);
+        else
+          GridGenerator::quarter_hyper_shell(tria, o, inner_radius, radius);
+      }
+
+      // Disc (2D) or ball (3D) segment, solid or hollow, with the curved
+      // side below the centre: deal.II's segment turned by -90 degrees about
+      // z (+x becomes -y). Face groups: 0 the outer curved face, 1 the top
+      // (y = centre), 2 the symmetry plane x = centre, 3 the symmetry plane
+      // z = centre, then @p inner_id the inner curved face of a shell.
+      template <int dim>
+      void
+      make_ball_segment(Triangulation<dim>   &tria,
+                        const BodyParameters &body,
+                        const unsigned int    inner_id)
+      {
+        make_deal_ii_segment(tria,
+                             body.segment,
+                             body.radius,
+                             body.inner_radius);
+        if constexpr (dim == 2)
+          GridTools::rotate(-numbers::PI / 2, tria);
+        else
+          GridTools::rotate(Tensor<1, 3>({0., 0., 1.}), -numbers::PI / 2, tria);
+        const double tol = 1e-10 * body.radius;
+        // On the sphere of radius r: every vertex of the face is.
+        const auto on_sphere = [tol](const auto &face, const double r) {
+          for (const auto v : face->vertex_indices())
+            if (std::abs(face->vertex(v).norm() - r) > tol)
+              return false;
+          return true;
+        };
+        for (const auto &face : tria.active_face_iterators())
+          if (face->at_boundary())
+            {
+              const Point<dim> c = face->center();
+              if (on_sphere(face, body.radius))
+                face->set_boundary_id(0);
+              else if (body.inner_radius > 0 &&
+                       on_sphere(face, body.inner_radius))
+                face->set_boundary_id(inner_id);
+              else if (std::abs(c[1]) < tol)
+                face->set_boundary_id(1);
+              else if (std::abs(c[0]) < tol)
+                face->set_boundary_id(2);
+              else if (dim == 3 && std::abs(c[dim - 1]) < tol)
+                face->set_boundary_id(3);
+            }
       }
 
       struct CurvedBody
@@ -207,22 +252,28 @@ namespace Signorini
             case BodyShape::ball_segment:
             case BodyShape::cylinder_segment:
               {
+                if (body.inner_radius >= body.radius)
+                  throw InputError(body_name(b) +
+                                   ", parameter 'Inner radius': it must be "
+                                   "below 'Radius' (0 for a solid body).");
                 const Point<dim> centre =
                   point_of<dim>(body.centre, b, "Centre") + shift;
                 if (dim == 2 || body.shape == BodyShape::ball_segment)
                   {
-                    make_ball_segment(tria, body.segment, body.radius);
+                    make_ball_segment(tria, body, inner_face_group(body, dim));
                     GridTools::shift(centre, tria);
                     assign_boundary_ids(tria,
                                         body,
                                         b,
-                                        n_segment_faces(body.segment, dim));
+                                        n_segment_faces(body.segment, dim) +
+                                          (body.inner_radius > 0));
                   }
                 else
                   {
                     Triangulation<2> disc;
-                    make_ball_segment(disc, body.segment, body.radius);
-                    // Side walls keep 0/1/2; put the end caps on 3 and 4.
+                    make_ball_segment(disc, body, inner_face_group(body, 3));
+                    // Side walls keep 0/1/2 (and 5 inside a tube); put the
+                    // end caps on 3 and 4.
                     const unsigned int n_layers =
                       body.subdivisions.empty() ? 1 : body.subdivisions[0];
                     Triangulation<3> cylinder;
@@ -245,7 +296,10 @@ namespace Signorini
                         tria.copy_triangulation(cylinder);
                         GridTools::shift(centre, tria);
                       }
-                    assign_boundary_ids(tria, body, b, 5);
+                    assign_boundary_ids(tria,
+                                        body,
+                                        b,
+                                        body.inner_radius > 0 ? 6 : 5);
                   }
                 break;
               }
@@ -358,6 +412,13 @@ namespace Signorini
                                                   10 * (b + 1) :
                                                   bodies[b].boundary_ids[0];
               body_tria.set_all_manifold_ids_on_boundary(curved, surface);
+              const unsigned int inner = inner_face_group(bodies[b], dim);
+              if (inner != numbers::invalid_unsigned_int)
+                body_tria.set_all_manifold_ids_on_boundary(
+                  bodies[b].boundary_ids.empty() ?
+                    10 * (b + 1) + inner :
+                    bodies[b].boundary_ids[inner],
+                  surface);
               const Point<dim> centre =
                 point_of<dim>(bodies[b].centre, b, "Centre") +
                 point_of<dim>(bodies[b].shift, b, "Shift");

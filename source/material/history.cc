@@ -11,14 +11,14 @@ namespace Signorini
                              const unsigned int        n)
     {
       n_values = n;
-      points   = quadrature.get_points();
+      rule     = quadrature;
       if (n_values == 0)
         return;
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             // initialize() keeps the data of cells that have some.
-            data.template initialize<PointHistory>(cell, points.size());
+            data.template initialize<PointHistory>(cell, rule.size());
             for (const auto &point : data.get_data(cell))
               if (point->values.empty())
                 point->values.assign(n_values, 0.);
@@ -53,13 +53,43 @@ namespace Signorini
 
 
     template <int dim>
+    std::vector<ArrayView<const double>>
+    History<dim>::on_cell(const CellIterator &cell, const unsigned int n) const
+    {
+      std::vector<ArrayView<const double>> views(rule.size());
+      if (n == 0)
+        return views;
+      AssertIndexRange(n, n_values + 1);
+      const auto values = data.get_data(cell);
+      for (unsigned int q = 0; q < views.size(); ++q)
+        views[q] = ArrayView<const double>(values[q]->values.data(), n);
+      return views;
+    }
+
+
+    template <int dim>
+    std::vector<ArrayView<double>>
+    History<dim>::on_cell(const CellIterator &cell, const unsigned int n)
+    {
+      std::vector<ArrayView<double>> views(rule.size());
+      if (n == 0)
+        return views;
+      AssertIndexRange(n, n_values + 1);
+      const auto values = data.get_data(cell);
+      for (unsigned int q = 0; q < views.size(); ++q)
+        views[q] = ArrayView<double>(values[q]->values.data(), n);
+      return views;
+    }
+
+
+    template <int dim>
     unsigned int
     History<dim>::nearest_point(const Point<dim> &unit_point) const
     {
       unsigned int nearest = 0;
-      for (unsigned int q = 1; q < points.size(); ++q)
-        if (unit_point.distance_square(points[q]) <
-            unit_point.distance_square(points[nearest]))
+      for (unsigned int q = 1; q < rule.size(); ++q)
+        if (unit_point.distance_square(rule.point(q)) <
+            unit_point.distance_square(rule.point(nearest)))
           nearest = q;
       return nearest;
     }

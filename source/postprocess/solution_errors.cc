@@ -44,6 +44,8 @@ namespace Signorini
                               parameters.boundary_conditions.constants))
         , s_exact(parsed<dim>(parameters.reference.stress,
                               parameters.boundary_conditions.constants))
+        , h_exact(parsed<dim>(parameters.reference.history,
+                              parameters.boundary_conditions.constants))
     {
     }
 
@@ -52,20 +54,33 @@ namespace Signorini
     std::vector<CheckResult>
     SolutionErrors<dim>::evaluate(const StepData<dim> &data) const
     {
+      std::vector<CheckResult> results;
+      if (h_exact)
+        {
+          h_exact->set_time(data.time);
+          const MPI_Comm comm      = data.dof_handler.get_communicator();
+          const auto [error, norm] = local_history_error(data);
+          const double max_error   = Utilities::MPI::max(error, comm);
+          const double max_norm    = Utilities::MPI::max(norm, comm);
+          results.push_back(
+            relative_error(parameters.reference.history_name +
+                             " max relative error",
+                           max_norm > 0 ? max_error / max_norm : max_error,
+                           parameters.reference.tolerance));
+        }
       if (!u_exact && !s_exact)
-        return {};
+        return results;
       if (u_exact)
         u_exact->set_time(data.time);
       if (s_exact)
         s_exact->set_time(data.time);
-      Sums           s    = local_sums(data);
-      const MPI_Comm comm = data.dof_handler.get_communicator();
-      s.u_error2          = Utilities::MPI::sum(s.u_error2, comm);
-      s.u_norm2           = Utilities::MPI::sum(s.u_norm2, comm);
-      s.s_error_max       = Utilities::MPI::max(s.s_error_max, comm);
-      s.s_norm_max        = Utilities::MPI::max(s.s_norm_max, comm);
-      const double             tolerance = parameters.reference.tolerance;
-      std::vector<CheckResult> results;
+      Sums           s       = local_sums(data);
+      const MPI_Comm comm    = data.dof_handler.get_communicator();
+      s.u_error2             = Utilities::MPI::sum(s.u_error2, comm);
+      s.u_norm2              = Utilities::MPI::sum(s.u_norm2, comm);
+      s.s_error_max          = Utilities::MPI::max(s.s_error_max, comm);
+      s.s_norm_max           = Utilities::MPI::max(s.s_norm_max, comm);
+      const double tolerance = parameters.reference.tolerance;
       if (u_exact)
         results.push_back(relative_error("displacement L2 relative error",
                                          s.u_norm2 > 0 ?
@@ -167,6 +182,42 @@ namespace Signorini
               }
           }
       return s;
+    }
+
+
+    template <int dim>
+    std::pair<double, double>
+    SolutionErrors<dim>::local_history_error(const StepData<dim> &data) const
+    {
+      const Quadrature<dim> &points = data.history.quadrature();
+      FEValues<dim>          fe_values(data.mapping,
+                              data.dof_handler.get_fe(),
+                              points,
+                              update_quadrature_points);
+      const std::string     &name  = parameters.reference.history_name;
+      double                 error = 0, norm = 0;
+      for (const auto &cell : data.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto &material = *data.materials.at(cell->material_id());
+            const auto  names    = material.history_output_names();
+            const auto  k        = std::find(names.begin(), names.end(), name);
+            if (k == names.end())
+              continue;
+            fe_values.reinit(cell);
+            const auto history =
+              data.history.on_cell(cell, material.n_history_values());
+            for (unsigned int q = 0; q < points.size(); ++q)
+              {
+                const double value =
+                  material.history_output(history[q])[k - names.begin()];
+                const double exact =
+                  h_exact->value(fe_values.quadrature_point(q));
+                error = std::max(error, std::abs(value - exact));
+                norm  = std::max(norm, std::abs(exact));
+              }
+          }
+      return {error, norm};
     }
 
 

@@ -52,6 +52,11 @@ namespace Signorini
                     Vector<float>       &subdomain) const;
 
       void
+      add_history_data(const StepData<dim>        &data,
+                       DataOut<dim>               &data_out,
+                       std::vector<Vector<float>> &fields) const;
+
+      void
       write(const DataOut<dim> &data_out, const StepData<dim> &data);
 
       std::string                                 directory;
@@ -85,6 +90,8 @@ namespace Signorini
       Vector<float> material_id(triangulation.n_active_cells());
       Vector<float> subdomain(triangulation.n_active_cells());
       add_cell_data(data, data_out, material_id, subdomain);
+      std::vector<Vector<float>> history_fields;
+      add_history_data(data, data_out, history_fields);
       // Contact fields at the slave nodes (zero elsewhere), on a scalar
       // DoFHandler of the displacement's base element.
       DoFHandler<dim> scalar_dofs(triangulation);
@@ -117,6 +124,53 @@ namespace Signorini
           }
       data_out.add_data_vector(material_id, "material_id");
       data_out.add_data_vector(subdomain, "subdomain");
+    }
+
+
+    // The materials' history quantities (history_output_names()) as cell
+    // data: each the mean over the cell's bulk quadrature points (with the
+    // rule's weights), 0 in cells whose material lacks it. @p fields keeps
+    // the vectors until the patches are built.
+    template <int dim>
+    void
+    Visualization<dim>::add_history_data(
+      const StepData<dim>        &data,
+      DataOut<dim>               &data_out,
+      std::vector<Vector<float>> &fields) const
+    {
+      std::vector<std::string> names;
+      for (const auto &[id, material] : data.materials)
+        for (const auto &name : material->history_output_names())
+          if (std::find(names.begin(), names.end(), name) == names.end())
+            names.push_back(name);
+      const auto &rule = data.history.quadrature();
+      fields.assign(names.size(),
+                    Vector<float>(
+                      data.dof_handler.get_triangulation().n_active_cells()));
+      for (const auto &cell : data.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto &material = *data.materials.at(cell->material_id());
+            const auto  own      = material.history_output_names();
+            if (own.empty())
+              continue;
+            const auto history =
+              data.history.on_cell(cell, material.n_history_values());
+            for (unsigned int q = 0; q < rule.size(); ++q)
+              {
+                const auto values = material.history_output(history[q]);
+                for (unsigned int k = 0; k < own.size(); ++k)
+                  {
+                    const auto f =
+                      std::find(names.begin(), names.end(), own[k]) -
+                      names.begin();
+                    fields[f](cell->active_cell_index()) +=
+                      values[k] * rule.weight(q);
+                  }
+              }
+          }
+      for (unsigned int f = 0; f < names.size(); ++f)
+        data_out.add_data_vector(fields[f], names[f]);
     }
 
 

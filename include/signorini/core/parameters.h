@@ -61,6 +61,7 @@ namespace Signorini
     std::vector<unsigned int>            subdivisions;
     std::vector<double>                  centre;
     double                               radius;
+    double                               inner_radius; // 0: solid
     Segment                              segment;
     double                               length;
     std::string                          mesh_file;
@@ -248,6 +249,8 @@ namespace Signorini
   {
     std::vector<std::string> displacement; // empty: no reference
     std::vector<std::string> stress;       // dim*dim expressions, row-major
+    std::string              history_name; // a history quantity, or empty
+    std::vector<std::string> history;      // its expression (one or none)
     double                   tolerance;
     // Contact checks (0 / empty: not checked).
     double              max_pressure, pressure_tolerance;

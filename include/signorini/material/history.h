@@ -75,6 +75,21 @@ namespace Signorini
       ArrayView<double>
       at(const CellIterator &cell, const unsigned int q, const unsigned int n);
 
+      /** The first @p n values of every point of @p cell (locally owned),
+       * indexed by quadrature point, from one lookup in the storage; empty
+       * views when @p n is 0. For loops over all points of a cell. */
+      std::vector<ArrayView<const double>>
+      on_cell(const CellIterator &cell, const unsigned int n) const;
+      std::vector<ArrayView<double>>
+      on_cell(const CellIterator &cell, const unsigned int n);
+
+      /** The bulk rule (its points on the reference cell). */
+      const Quadrature<dim> &
+      quadrature() const
+      {
+        return rule;
+      }
+
       /** The quadrature point of the bulk rule nearest to @p unit_point
        * (for output at points that are not quadrature points). */
       unsigned int
@@ -89,7 +104,7 @@ namespace Signorini
 
     private:
       CellDataStorage<CellIterator, PointHistory> data;
-      std::vector<Point<dim>>                     points;
+      Quadrature<dim>                             rule;
       unsigned int                                n_values = 0;
     };
   } // namespace Material

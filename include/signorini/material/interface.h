@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 /**
  * Constitutive models of the bodies (the plug-in family of subsection
@@ -141,6 +142,24 @@ namespace Signorini
       {
         (void)strain;
         (void)history;
+      }
+
+      /** Scalar quantities of the history, by name, for output (cell means
+       * in the VTU files) and for 'Reference solution/History quantity'.
+       * Default: none. */
+      virtual std::vector<std::string>
+      history_output_names() const
+      {
+        return {};
+      }
+
+      /** The quantities of history_output_names() at a point whose history
+       * is @p history, in that order. */
+      virtual std::vector<double>
+      history_output(const ArrayView<const double> &history) const
+      {
+        (void)history;
+        return {};
       }
 
       /** True if the stress is a linear function of the strain without

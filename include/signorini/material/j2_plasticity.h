@@ -58,6 +58,20 @@ namespace Signorini
       update_history(const SymmetricTensor<2, 3> &strain,
                      const ArrayView<double>     &history) const override;
 
+      /** The equivalent plastic strain alpha (accumulated
+       * sqrt(2/3) |d eps_p|); positive where the material has yielded. */
+      std::vector<std::string>
+      history_output_names() const override
+      {
+        return {"equivalent_plastic_strain"};
+      }
+
+      std::vector<double>
+      history_output(const ArrayView<const double> &history) const override
+      {
+        return {history[12]};
+      }
+
       bool
       is_linear() const override
       {

@@ -21,7 +21,10 @@ namespace Signorini
      * stress against 'Stress' (largest pointwise error over the largest
      * reference stress, at the Gauss points of degree + 2), each against
      * 'Tolerance'. The stress is the materials' at the computed strain
-     * (with the projected volumetric strain where the run uses it).
+     * (with the projected volumetric strain where the run uses it). A
+     * history quantity against 'History quantity': the largest error over
+     * the largest reference value, at the bulk quadrature points (where the
+     * history lives) of the cells whose material has the quantity.
      */
     template <int dim>
     class SolutionErrors
@@ -41,8 +44,12 @@ namespace Signorini
       Sums
       local_sums(const StepData<dim> &data) const;
 
+      /** This rank's largest history error and reference value. */
+      std::pair<double, double>
+      local_history_error(const StepData<dim> &data) const;
+
       const Parameters                    &parameters;
-      std::unique_ptr<FunctionParser<dim>> u_exact, s_exact;
+      std::unique_ptr<FunctionParser<dim>> u_exact, s_exact, h_exact;
     };
   } // namespace Postprocess
 } // namespace Signorini
