@@ -163,14 +163,15 @@ namespace Signorini
     const std::string &name = parameters.reference.history_name;
     if (name.empty())
       return;
-    std::string known;
+    std::set<std::string> names;
     for (const auto &[id, material] : materials)
       for (const auto &n : material->history_output_names())
-        {
-          if (n == name)
-            return;
-          known += (known.empty() ? "" : ", ") + n;
-        }
+        names.insert(n);
+    if (names.count(name) != 0)
+      return;
+    std::string known;
+    for (const auto &n : names)
+      known += (known.empty() ? "" : ", ") + n;
     throw InputError("subsection 'Reference solution', parameter 'History "
                      "quantity': no material of the run has a history "
                      "quantity '" +

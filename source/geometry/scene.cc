@@ -93,6 +93,17 @@ namespace Signorini
           }
       }
 
+      // The user-visible id of face group @p local of body @p b: 10 (b + 1)
+      // + local, or the body's 'Boundary ids' entry.
+      types::boundary_id
+      boundary_id_of(const BodyParameters &body,
+                     const unsigned int    b,
+                     const unsigned int    local)
+      {
+        return body.boundary_ids.empty() ? 10 * (b + 1) + local :
+                                           body.boundary_ids[local];
+      }
+
       // Gives the faces of a generated shape their user-visible ids.
       template <int dim>
       void
@@ -111,10 +122,8 @@ namespace Signorini
         for (const auto &face : tria.active_face_iterators())
           if (face->at_boundary())
             {
-              const unsigned int local = face->boundary_id();
-              face->set_boundary_id(body.boundary_ids.empty() ?
-                                      10 * (b + 1) + local :
-                                      body.boundary_ids[local]);
+              face->set_boundary_id(
+                boundary_id_of(body, b, face->boundary_id()));
             }
       }
 
@@ -408,17 +417,12 @@ namespace Signorini
             {
               const types::manifold_id surface = 2 * b + 1, volume = 2 * b + 2;
               body_tria.set_all_manifold_ids(volume);
-              const types::boundary_id curved = bodies[b].boundary_ids.empty() ?
-                                                  10 * (b + 1) :
-                                                  bodies[b].boundary_ids[0];
-              body_tria.set_all_manifold_ids_on_boundary(curved, surface);
+              body_tria.set_all_manifold_ids_on_boundary(
+                boundary_id_of(bodies[b], b, 0), surface); // outer curved
               const unsigned int inner = inner_face_group(bodies[b], dim);
               if (inner != numbers::invalid_unsigned_int)
                 body_tria.set_all_manifold_ids_on_boundary(
-                  bodies[b].boundary_ids.empty() ?
-                    10 * (b + 1) + inner :
-                    bodies[b].boundary_ids[inner],
-                  surface);
+                  boundary_id_of(bodies[b], b, inner), surface);
               const Point<dim> centre =
                 point_of<dim>(bodies[b].centre, b, "Centre") +
                 point_of<dim>(bodies[b].shift, b, "Shift");
