@@ -362,6 +362,13 @@ namespace Signorini
                  "the supports and friction can carry) or the iteration is "
                  "stuck; " +
                  smaller + " helps only in the second case.";
+        case NewtonFailure::linear_solve:
+          return "A singular tangent means that part of the model can move "
+                 "at no force in that iterate: a body without supports, or a "
+                 "perfectly plastic zone that has become a mechanism (give "
+                 "the material some hardening, or prescribe the motion "
+                 "instead of the load); " +
+                 smaller + " helps when a large step reached it.";
         case NewtonFailure::geometric:
           return "Raise 'Contact/Maximum geometric iterations' or use " +
                  smaller + ".";
@@ -411,6 +418,19 @@ namespace Signorini
     // again ('Initial status').
     if (none_converged)
       first_pairing = true;
+  }
+
+
+  template <int dim>
+  void
+  LoadStep<dim>::restore_last_converged(const double time)
+  {
+    report.position.time = time;
+    system.make_constraints(time, boundary_conditions, contact);
+    boundary_conditions.set_load_time(time);
+    system.state = last_converged;
+    system.update_solution();
+    equilibrium.evaluate(false);
   }
 
 

@@ -164,6 +164,7 @@ namespace Signorini
     if (partial)
       {
         report.counts.step_cuts = progress.cuts - 1;
+        load_step.restore_last_converged(progress.t_done);
         pcout << "  results of the last converged sub-step (t = "
               << format(progress.t_done, 4) << ") written as step " << step
               << std::endl;

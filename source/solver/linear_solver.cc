@@ -10,11 +10,17 @@
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
+#include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
+#include <signorini/core/errors.h>
 #include <signorini/solver/linear_solver.h>
+
+#include <iomanip>
+#include <sstream>
+#include <string>
 
 namespace Signorini
 {
@@ -335,6 +341,15 @@ namespace Signorini
                                "the other package (MUMPS or KLU)."));
         direct_solver.reset(
           factory.Create(parameters.direct_package.c_str(), *direct_problem));
+        // MUMPS counts the null pivots: pivots below 1e-12 of the norm of
+        // the scaled matrix, where a tangent singular to round-off (a
+        // mechanism) has them near 1e-16 and a regular one, even a stiff
+        // contrast of 1e6, far above.
+        if (auto *mumps = dynamic_cast<Amesos_Mumps *>(direct_solver.get()))
+          {
+            mumps->SetICNTL(24, 1);
+            mumps->SetCNTL(3, 1e-12);
+          }
         AssertThrow(direct_solver->SymbolicFactorization() == 0,
                     ExcMessage("The direct solver's analysis failed."));
         analysed_matrix = &A.trilinos_matrix();
@@ -359,11 +374,20 @@ namespace Signorini
           analyse();
           status = factorise();
         }
-      AssertThrow(status == 0,
-                  ExcMessage("The direct solver's factorisation failed "
-                             "(singular system?)."));
-      AssertThrow(direct_solver->Solve() == 0,
-                  ExcMessage("The direct solver's solve failed."));
+      // INFOG(28) (0-based 27): the number of null pivots found.
+      auto *mumps = dynamic_cast<Amesos_Mumps *>(direct_solver.get());
+      if (status == 0 && mumps != nullptr && mumps->GetINFOG()[27] > 0)
+        throw LinearSolveError("the tangent is singular: MUMPS found " +
+                               std::to_string(mumps->GetINFOG()[27]) +
+                               " null pivot(s) in its factorisation");
+      if (status != 0)
+        throw LinearSolveError("the " + parameters.direct_package +
+                               " factorisation of the tangent failed (status " +
+                               std::to_string(status) +
+                               "): the tangent is singular or nearly so");
+      if (direct_solver->Solve() != 0)
+        throw LinearSolveError("the " + parameters.direct_package +
+                               " solve with the factorised tangent failed");
     }
 
 
@@ -379,6 +403,28 @@ namespace Signorini
           return 0;
         }
 
+      try
+        {
+          return solve_iterative(A, x, b);
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          std::ostringstream s;
+          s << "the Krylov solve of the tangent stopped at " << e.last_step
+            << " iterations with residual " << std::scientific
+            << std::setprecision(2) << e.last_residual
+            << " above 'Linear solver/Tolerance' times |b|";
+          throw LinearSolveError(s.str());
+        }
+    }
+
+
+    template <int dim>
+    unsigned int
+    LinearSolver<dim>::solve_iterative(const TrilinosWrappers::SparseMatrix &A,
+                                       TrilinosWrappers::MPI::Vector        &x,
+                                       const TrilinosWrappers::MPI::Vector  &b)
+    {
       if (owned_m.size() > 0)
         return solve_blocks(A, x, b);
       TrilinosWrappers::PreconditionAMG amg;

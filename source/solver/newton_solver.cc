@@ -2,6 +2,7 @@
 // convergence rules, the line search and the reason of a failure.
 #include <deal.II/base/utilities.h>
 
+#include <signorini/core/errors.h>
 #include <signorini/postprocess/format.h>
 #include <signorini/solver/newton_solver.h>
 
@@ -201,7 +202,18 @@ namespace Signorini
               problem.release_contradicted();
               continue; // evaluate the same iterate again
             }
-          LinearisedStep step                 = problem.solve_linearised(it);
+          LinearisedStep step;
+          try
+            {
+              step = problem.solve_linearised(it);
+            }
+          catch (const LinearSolveError &e)
+            {
+              result.failure = NewtonFailure::linear_solve;
+              result.why =
+                "Newton iterate " + std::to_string(it) + ": " + e.what();
+              return result;
+            }
           held_motions                        = step.held_motions;
           TrilinosWrappers::MPI::Vector owned = problem.iterate();
           if (parameters.line_search_steps > 0 && !step.prescribes_values)

@@ -25,5 +25,9 @@ last="$(tail -1 results/statistics.csv | cut -d, -f1,2)"
 if [ "$last" != "2,7.500000e-01" ]; then
   echo "FAIL: statistics.csv ends with '$last', expected step 2 at t = 0.75"; status=1
 fi
+reaction="$(tail -1 results/statistics.csv | cut -d, -f9)"
+if [ "$reaction" != "7.500000e+04" ]; then
+  echo "FAIL: reaction_1_y of the written sub-step is '$reaction', expected the load 7.500000e+04 (forces of the failed attempt?)"; status=1
+fi
 [ $status -eq 0 ] && echo "PASS: exit code 2, step 2 written at t = 0.75 (its last converged sub-step), run summary printed, files complete"
 exit $status

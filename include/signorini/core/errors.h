@@ -23,6 +23,16 @@ namespace Signorini
   public:
     using std::runtime_error::runtime_error;
   };
+
+  /** The linearised system of a Newton iterate could not be solved (a
+   * factorisation that met a singular tangent, a Krylov solve that did not
+   * converge). Newton reports the iterate as failed, so the load step is
+   * cut like any other failed step; the message says what failed. */
+  class LinearSolveError : public RunError
+  {
+  public:
+    using RunError::RunError;
+  };
 } // namespace Signorini
 
 #endif

@@ -56,6 +56,12 @@ namespace Signorini
     void
     mark_converged(const bool with_increment);
 
+    /** Back to the last converged (sub)step, at its time @p time, with its
+     * forces evaluated again (a failed attempt leaves its own in the
+     * system): for writing it as the step's results when the run stops. */
+    void
+    restore_last_converged(const double time);
+
     /** Back to the state at the start of the step (a solve on a refined
      * mesh failed). */
     void

@@ -71,7 +71,9 @@ namespace Signorini
       void
       pattern_changed();
 
-      /** Solves A x = b; returns the Krylov iterations (0 for direct). */
+      /** Solves A x = b; returns the Krylov iterations (0 for direct).
+       * Throws LinearSolveError where the factorisation or the Krylov solve
+       * fails. */
       unsigned int
       solve(const TrilinosWrappers::SparseMatrix &A,
             TrilinosWrappers::MPI::Vector        &x,
@@ -100,6 +102,12 @@ namespace Signorini
       solve_direct(const TrilinosWrappers::SparseMatrix &A,
                    TrilinosWrappers::MPI::Vector        &x,
                    const TrilinosWrappers::MPI::Vector  &b);
+
+      /** The Krylov solves (throw SolverControl::NoConvergence). */
+      unsigned int
+      solve_iterative(const TrilinosWrappers::SparseMatrix &A,
+                      TrilinosWrappers::MPI::Vector        &x,
+                      const TrilinosWrappers::MPI::Vector  &b);
 
       unsigned int
       solve_blocks(const TrilinosWrappers::SparseMatrix &A,

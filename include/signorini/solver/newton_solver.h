@@ -30,7 +30,8 @@ namespace Signorini
       statuses,        // contact statuses still changing
       stagnation,      // settled statuses, residual no longer decreasing
       iteration_limit, // still converging when the iterations ran out
-      geometric        // the pairing loop did not settle
+      geometric,       // the pairing loop did not settle
+      linear_solve     // the linearised system could not be solved
     };
 
     class NewtonSolver
