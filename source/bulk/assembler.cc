@@ -221,6 +221,45 @@ namespace Signorini
 
     template <int dim>
     void
+    Assembler<dim>::assemble_external_force(
+      const DoFHandler<dim>               &dof_handler,
+      const TrilinosWrappers::MPI::Vector &solution,
+      const bool                           with_body_force,
+      TrilinosWrappers::MPI::Vector       &external_force) const
+    {
+      const QGauss<dim - 1> face_quadrature(fe.degree + 1);
+      FEFaceValues<dim>     fe_face_values(mapping,
+                                       fe,
+                                       face_quadrature,
+                                       update_values |
+                                         update_quadrature_points |
+                                         update_normal_vectors |
+                                         update_JxW_values);
+      CellKinematics k(mapping, fe, cell_quadrature, parameters.axisymmetric);
+      Vector<double> cell_fext(fe.n_dofs_per_cell());
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      external_force = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            if (!with_body_force && !cell->at_boundary())
+              continue;
+            cell_fext = 0;
+            if (with_body_force)
+              {
+                cell_kinematics(cell, solution, k);
+                add_body_force(k, cell_fext);
+              }
+            add_neumann(cell, fe_face_values, cell_fext);
+            cell->get_dof_indices(dofs);
+            external_force.add(dofs, cell_fext);
+          }
+      external_force.compress(VectorOperation::add);
+    }
+
+
+    template <int dim>
+    void
     Assembler<dim>::update_history(
       const DoFHandler<dim>               &dof_handler,
       const TrilinosWrappers::MPI::Vector &solution,

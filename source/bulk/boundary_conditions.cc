@@ -96,6 +96,17 @@ namespace Signorini
 
 
     template <int dim>
+    bool
+    BoundaryConditions<dim>::has_body_force() const
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (Utilities::trim(parameters.body_force[d]) != "0")
+          return true;
+      return false;
+    }
+
+
+    template <int dim>
     void
     BoundaryConditions<dim>::check_boundary_ids(
       const std::set<types::boundary_id> &ids) const

@@ -6,6 +6,7 @@
 #include <signorini/core/load_step.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 
@@ -154,7 +155,7 @@ namespace Signorini
     // with and without DoFs in different compress modes (a deadlock).
     const double factor =
       !resume && parameters.load_stepping.extrapolate && last_step_size > 0 ?
-        predictor_factor(time - step_start_time) :
+        predictor_factor(time, step_start_time) :
         0.;
     TrilinosWrappers::MPI::Vector owned(system.owned_system,
                                         system.mpi_communicator);
@@ -190,18 +191,21 @@ namespace Signorini
 
 
   // The scale of the last converged increment in the extrapolated
-  // predictor: the factor that best matches its prescribed (Dirichlet)
-  // values to this step's, in the least-squares sense over the DoFs with a
-  // prescribed value. For values proportional along the path it is the
-  // ratio of the step sizes; where the prescribed motion reverses it is
-  // negative, and where it turns at a right angle near 0, so the predictor
-  // never continues a motion the loading has left (a plastic body would
-  // yield further in the predictor where it unloads). Where no prescribed
-  // value moved in the last increment (loads or obstacles drive the
-  // scene): the ratio of the step sizes, @p step_size over the last.
+  // predictor: the factor that best matches the data of the last increment
+  // to this step's, in the least-squares sense, for each kind of data that
+  // moved in the last increment: the prescribed (Dirichlet) values, and
+  // the loads (the external force vector of the Neumann tractions and the
+  // body force); with both, the mean of the two (dimensionless) factors.
+  // For data proportional along the path it is the ratio of the step
+  // sizes; where the data reverse it is negative, and where they turn at a
+  // right angle near 0, so the predictor never continues a motion or a
+  // load that the path has left (a plastic body would yield further in the
+  // predictor where it unloads). Where neither moved (obstacles drive the
+  // scene): the ratio of the step sizes.
   template <int dim>
   double
-  LoadStep<dim>::predictor_factor(const double step_size) const
+  LoadStep<dim>::predictor_factor(const double time,
+                                  const double step_start_time)
   {
     const auto &constraints = system.constraints_values;
     double      new_old = 0, old_old = 0;
@@ -215,9 +219,62 @@ namespace Signorini
           new_old += d_new * d_old;
           old_old += d_old * d_old;
         }
-    new_old = Utilities::MPI::sum(new_old, system.mpi_communicator);
-    old_old = Utilities::MPI::sum(old_old, system.mpi_communicator);
-    return old_old > 0 ? new_old / old_old : step_size / last_step_size;
+    std::array<double, 4> products{{new_old, old_old, 0., 0.}};
+    if (boundary_conditions.has_loads())
+      {
+        const auto [f_new, f_old] =
+          load_increments(time,
+                          step_start_time,
+                          step_start_time - last_step_size);
+        products[2] = f_new * f_old;
+        products[3] = f_old * f_old;
+      }
+    Utilities::MPI::sum(ArrayView<const double>(products),
+                        system.mpi_communicator,
+                        ArrayView<double>(products));
+    double       sum_of_factors = 0;
+    unsigned int n_factors      = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      if (products[2 * b + 1] > 0)
+        {
+          sum_of_factors += products[2 * b] / products[2 * b + 1];
+          ++n_factors;
+        }
+    return n_factors > 0 ? sum_of_factors / n_factors :
+                           (time - step_start_time) / last_step_size;
+  }
+
+
+  // The load increments F_ext(@p time) - F_ext(@p start) and F_ext(@p start)
+  // - F_ext(@p previous) (owned parts; the loads do not depend on the
+  // displacement), with the load functions left at @p time.
+  template <int dim>
+  std::pair<Vector<double>, Vector<double>>
+  LoadStep<dim>::load_increments(const double time,
+                                 const double start,
+                                 const double previous)
+  {
+    TimerOutput::Scope            t(timer, "predictor loads");
+    std::array<Vector<double>, 3> f;
+    const std::array<double, 3>   times{{time, start, previous}};
+    TrilinosWrappers::MPI::Vector force(system.locally_owned,
+                                        system.mpi_communicator);
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        boundary_conditions.set_load_time(times[k]);
+        bulk.assemble_external_force(system.dof_handler,
+                                     system.solution,
+                                     boundary_conditions.has_body_force(),
+                                     force);
+        f[k].reinit(system.locally_owned.n_elements());
+        unsigned int n = 0;
+        for (const auto i : system.locally_owned)
+          f[k][n++] = force[i];
+      }
+    boundary_conditions.set_load_time(time);
+    f[0] -= f[1];
+    f[1] -= f[2];
+    return {f[0], f[1]};
   }
 
 
@@ -400,6 +457,7 @@ namespace Signorini
     // (sub)steps only: a cut step, line-search trials and the Jacobian check
     // never reach it.
     system.update_solution();
+    system.history.save_start();
     bulk.update_history(system.dof_handler, system.solution, system.history);
   }
 

@@ -141,15 +141,16 @@ namespace Signorini
                          "'. Add one (and raise 'Number of materials').");
     for (unsigned int k = 0; k < parameters.materials.size(); ++k)
       if (parameters.adaptivity.cycles > 0 &&
+          parameters.adaptivity.coarsening_fraction > 0 &&
           materials.at(parameters.materials[k].material_id)
               ->n_history_values() > 0)
         throw InputError(
-          "subsection 'Adaptive refinement', parameter 'Cycles': material " +
+          "subsection 'Adaptive refinement', parameter 'Coarsening "
+          "fraction': material " +
           std::to_string(k + 1) + " ('" + parameters.materials[k].model +
-          "') keeps a history at its quadrature points, which adaptive "
-          "refinement does not carry to the new mesh yet. Set 'Cycles = 0' "
-          "and refine the mesh where the plastic zone is expected "
-          "(Geometry/Local refinements, Refinement region).");
+          "') keeps a history at its quadrature points, which is carried "
+          "to refined cells but cannot be merged into a coarsened one. Set "
+          "'Coarsening fraction = 0'.");
     check_history_reference();
   }
 

@@ -112,7 +112,9 @@ namespace Signorini
       system.triangulation.prepare_coarsening_and_refinement();
       check_adapted_size();
       transfer.prepare_for_coarsening_and_refinement(pointers);
+      system.history.prepare_for_refinement(system.triangulation);
       system.triangulation.execute_coarsening_and_refinement();
+      system.history.finish_refinement();
     }
     setup_system();
     TimerOutput::Scope                         t(timer, "adaptation");

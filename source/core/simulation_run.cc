@@ -110,8 +110,9 @@ namespace Signorini
 
 
   // Adaptive refinement within a step: refine, transfer, solve the last
-  // sub-step again on the new mesh from the transferred converged state;
-  // if that fails, from its transferred start, with step cuts.
+  // sub-step again on the new mesh from the transferred converged state
+  // (the history from its start) and commit it; if that fails, from its
+  // transferred start, with step cuts.
   template <int dim>
   void
   Simulation<dim>::adapt_in_step(const unsigned int         step,
@@ -125,13 +126,17 @@ namespace Signorini
         pcout << "  adaptive cycle " << cycle << " of " << cycles << std::endl;
         if (!adapt_mesh(progress.t_done, progress.t_sub_start))
           break;
+        // The sub-step is solved again from its start, history included.
+        system.history.restore_start();
         unsigned int iterations = 0;
         const bool   ok         = load_step.solve(progress.t_done,
                                         progress.t_sub_start,
                                         iterations,
                                         true);
         progress.iterations += iterations;
-        if (!ok)
+        if (ok)
+          load_step.accept_step(progress.t_done, progress.t_sub_start);
+        else
           {
             pcout << "  not converged on the refined mesh: again from the "
                      "start of the step"
@@ -140,7 +145,6 @@ namespace Signorini
             progress.t_done = progress.t_sub_start;
             advance_or_stop(step, t_step_start, progress, stepper);
           }
-        load_step.mark_converged(true);
       }
   }
 

@@ -95,6 +95,18 @@ namespace Signorini
                TrilinosWrappers::MPI::Vector       &internal_force,
                TrilinosWrappers::MPI::Vector       &external_force) const;
 
+      /** F_ext alone (the Neumann loads and, @p with_body_force, the body
+       * force, at the time of the functions) into @p external_force (owned;
+       * overwritten), in the configuration of @p solution (ghosted).
+       * Without the body force only the cells at the boundary are visited.
+       */
+      void
+      assemble_external_force(
+        const DoFHandler<dim>               &dof_handler,
+        const TrilinosWrappers::MPI::Vector &solution,
+        const bool                           with_body_force,
+        TrilinosWrappers::MPI::Vector       &external_force) const;
+
       /** Commits the history of every quadrature point from the converged
        * @p solution (ghosted); nothing without a model with history. */
       void

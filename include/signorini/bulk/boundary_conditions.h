@@ -54,6 +54,18 @@ namespace Signorini
       void
       check_boundary_ids(const std::set<types::boundary_id> &ids) const;
 
+      /** A body force other than 0. */
+      bool
+      has_body_force() const;
+
+      /** Some Neumann condition, or a body force: the run has loads besides
+       * its prescribed values. */
+      bool
+      has_loads() const
+      {
+        return !neumann_functions.empty() || has_body_force();
+      }
+
       /** Sets the time of the Neumann tractions and the body force. */
       void
       set_load_time(const double time);

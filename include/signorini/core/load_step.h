@@ -4,11 +4,14 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <deal.II/lac/vector.h>
+
 #include <signorini/core/equilibrium_problem.h>
 #include <signorini/solver/load_stepper.h>
 #include <signorini/solver/newton_solver.h>
 
 #include <string>
+#include <utility>
 
 namespace Signorini
 {
@@ -97,9 +100,14 @@ namespace Signorini
     void
     start(const double time, const double step_start_time, const bool resume);
     /** The scale of the last converged increment in the extrapolated
-     * predictor of a step of size @p step_size. */
+     * predictor of the step from @p step_start_time to @p time. */
     double
-    predictor_factor(const double step_size) const;
+    predictor_factor(const double time, const double step_start_time);
+    /** The external force increments of this step and of the last. */
+    std::pair<Vector<double>, Vector<double>>
+    load_increments(const double time,
+                    const double start,
+                    const double previous);
     /** A pairing of the geometric loop and its sparsity pattern. */
     void
     pair(const double time, const double step_start_time);
