@@ -126,6 +126,20 @@ namespace Signorini
 
 
     template <int dim>
+    std::unique_ptr<FEFaceValues<dim>>
+    Assembler<dim>::neumann_face_values() const
+    {
+      return std::make_unique<FEFaceValues<dim>>(mapping,
+                                                 fe,
+                                                 QGauss<dim - 1>(fe.degree + 1),
+                                                 update_values |
+                                                   update_quadrature_points |
+                                                   update_normal_vectors |
+                                                   update_JxW_values);
+    }
+
+
+    template <int dim>
     void
     Assembler<dim>::add_body_force(const CellKinematics &k,
                                    Vector<double>       &cell_fext) const
@@ -153,14 +167,7 @@ namespace Signorini
       TrilinosWrappers::MPI::Vector       &internal_force,
       TrilinosWrappers::MPI::Vector       &external_force) const
     {
-      const QGauss<dim - 1> face_quadrature(fe.degree + 1);
-      FEFaceValues<dim>     fe_face_values(mapping,
-                                       fe,
-                                       face_quadrature,
-                                       update_values |
-                                         update_quadrature_points |
-                                         update_normal_vectors |
-                                         update_JxW_values);
+      const auto     fe_face_values = neumann_face_values();
       CellKinematics k(mapping, fe, cell_quadrature, parameters.axisymmetric);
 
       const unsigned int n = fe.n_dofs_per_cell();
@@ -203,7 +210,7 @@ namespace Signorini
                   }
               }
 
-            add_neumann(cell, fe_face_values, cell_fext);
+            add_neumann(cell, *fe_face_values, cell_fext);
 
             cell->get_dof_indices(dofs);
             for (unsigned int i = 0; i < n; ++i)
@@ -227,14 +234,7 @@ namespace Signorini
       const bool                           with_body_force,
       TrilinosWrappers::MPI::Vector       &external_force) const
     {
-      const QGauss<dim - 1> face_quadrature(fe.degree + 1);
-      FEFaceValues<dim>     fe_face_values(mapping,
-                                       fe,
-                                       face_quadrature,
-                                       update_values |
-                                         update_quadrature_points |
-                                         update_normal_vectors |
-                                         update_JxW_values);
+      const auto     fe_face_values = neumann_face_values();
       CellKinematics k(mapping, fe, cell_quadrature, parameters.axisymmetric);
       Vector<double> cell_fext(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
@@ -250,7 +250,7 @@ namespace Signorini
                 cell_kinematics(cell, solution, k);
                 add_body_force(k, cell_fext);
               }
-            add_neumann(cell, fe_face_values, cell_fext);
+            add_neumann(cell, *fe_face_values, cell_fext);
             cell->get_dof_indices(dofs);
             external_force.add(dofs, cell_fext);
           }

@@ -155,6 +155,10 @@ namespace Signorini
       void
       add_body_force(const CellKinematics &k, Vector<double> &cell_fext) const;
 
+      /** The face values of the Neumann loads (add_neumann()). */
+      std::unique_ptr<FEFaceValues<dim>>
+      neumann_face_values() const;
+
       /** Neumann tractions of the boundary faces of @p cell into
        * @p cell_fext. */
       void
