@@ -6,6 +6,7 @@
 #include <signorini/bulk/assembler.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace Signorini
 {
@@ -50,6 +51,14 @@ namespace Signorini
         , u_values(quadrature.size())
         , theta_i(fe.n_dofs_per_cell())
         , local_u(fe.n_dofs_per_cell())
+        , full_gradients(quadrature.size())
+        , H(quadrature.size())
+        , grad_N(quadrature.size(),
+                 std::vector<Tensor<2, 3>>(fe.n_dofs_per_cell()))
+        , g(fe.n_dofs_per_cell())
+        , g_tau(fe.n_dofs_per_cell())
+        , d(fe.n_dofs_per_cell())
+        , c_d(fe.n_dofs_per_cell())
     {
     }
 
@@ -59,6 +68,7 @@ namespace Signorini
     Assembler<dim>::cell_kinematics(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       const TrilinosWrappers::MPI::Vector                  &solution,
+      const Material::Kinematics                            kinematics,
       CellKinematics                                       &k) const
     {
       const FEValuesExtractors::Vector displacement(0);
@@ -68,10 +78,36 @@ namespace Signorini
       const unsigned int nq        = cell_quadrature.size();
       auto              &fe_values = k.fe_values;
       fe_values.reinit(cell);
-      fe_values[displacement].get_function_symmetric_gradients(solution,
-                                                               k.gradients);
       if (axisymmetric)
         fe_values[displacement].get_function_values(solution, k.u_values);
+      if (kinematics == Material::Kinematics::finite_strain)
+        {
+          // H and Grad N_i; axisymmetric with the hoop terms u_r / R and
+          // N_i / R (radial shape functions).
+          fe_values[displacement].get_function_gradients(solution,
+                                                         k.full_gradients);
+          for (unsigned int q = 0; q < nq; ++q)
+            {
+              const double R = fe_values.quadrature_point(q)[0];
+              k.dV[q] =
+                fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * R : 1.);
+              k.H[q] =
+                Material::to_3d<dim>(k.full_gradients[q],
+                                     axisymmetric ? k.u_values[q][0] / R : 0.);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  const unsigned int c = fe.system_to_component_index(i).first;
+                  k.grad_N[q][i] =
+                    Material::to_3d<dim>(fe_values[displacement].gradient(i, q),
+                                         axisymmetric && c == 0 ?
+                                           fe_values.shape_value(i, q) / R :
+                                           0.);
+                }
+            }
+          return;
+        }
+      fe_values[displacement].get_function_symmetric_gradients(solution,
+                                                               k.gradients);
 
       // B operator and the cell's projection (B-bar).
       if (projected)
@@ -133,6 +169,7 @@ namespace Signorini
                                                  fe,
                                                  QGauss<dim - 1>(fe.degree + 1),
                                                  update_values |
+                                                   update_gradients |
                                                    update_quadrature_points |
                                                    update_normal_vectors |
                                                    update_JxW_values);
@@ -157,6 +194,77 @@ namespace Signorini
 
     template <int dim>
     void
+    Assembler<dim>::add_small_strain_point(
+      const Material::Interface<dim> &material,
+      const ArrayView<const double>  &history,
+      const unsigned int              q,
+      CellKinematics                 &k,
+      Vector<double>                 &f_int,
+      FullMatrix<double>             *matrix) const
+    {
+      const unsigned int    n = fe.n_dofs_per_cell();
+      SymmetricTensor<2, 3> stress;
+      SymmetricTensor<4, 3> C;
+      material.evaluate(k.strain[q], history, stress, matrix ? &C : nullptr);
+      const auto &B = k.B[q];
+      for (unsigned int i = 0; i < n; ++i)
+        f_int(i) += (stress * B[i]) * k.dV[q];
+      if (!matrix)
+        return;
+      for (unsigned int j = 0; j < n; ++j)
+        k.c_d[j] = C * B[j];
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < n; ++j)
+          (*matrix)(i, j) += (B[i] * k.c_d[j]) * k.dV[q];
+    }
+
+
+    template <int dim>
+    void
+    Assembler<dim>::add_finite_strain_point(
+      const Material::Interface<dim> &material,
+      const ArrayView<const double>  &history,
+      const unsigned int              q,
+      CellKinematics                 &k,
+      Vector<double>                 &f_int,
+      FullMatrix<double>             *matrix) const
+    {
+      const unsigned int n = fe.n_dofs_per_cell();
+      const Tensor<2, 3> F = unit_symmetric_tensor<3>() + k.H[q];
+      if (!(determinant(F) > 0))
+        {
+          // An inverted element: a NaN residual makes Newton fail this
+          // iterate (and the load stepper cut the step).
+          ++n_inverted;
+          f_int(0) += std::numeric_limits<double>::quiet_NaN();
+          return;
+        }
+      const Tensor<2, 3>    F_inv = invert(F);
+      SymmetricTensor<2, 3> tau;
+      SymmetricTensor<4, 3> c;
+      material.evaluate_finite_strain(F, history, tau, matrix ? &c : nullptr);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          k.g[i] = k.grad_N[q][i] * F_inv;
+          k.d[i] = symmetrize(k.g[i]);
+          f_int(i) += (tau * k.d[i]) * k.dV[q];
+        }
+      if (!matrix)
+        return;
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          k.c_d[j]   = c * k.d[j];
+          k.g_tau[j] = k.g[j] * tau;
+        }
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < n; ++j)
+          (*matrix)(i, j) +=
+            (k.d[i] * k.c_d[j] + scalar_product(k.g[i], k.g_tau[j])) * k.dV[q];
+    }
+
+
+    template <int dim>
+    void
     Assembler<dim>::assemble(
       const DoFHandler<dim>               &dof_handler,
       const TrilinosWrappers::MPI::Vector &solution,
@@ -174,7 +282,7 @@ namespace Signorini
       FullMatrix<double> cell_matrix(n, n);
       Vector<double>     cell_rhs(n), cell_fint(n), cell_fext(n);
       std::vector<types::global_dof_index> dofs(n);
-      std::vector<SymmetricTensor<2, 3>>   C_B(n);
+      n_inverted = 0;
 
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -185,32 +293,25 @@ namespace Signorini
             const auto        &material  = *materials.at(cell->material_id());
             const unsigned int n_history = material.n_history_values();
             const auto         cell_history = history.on_cell(cell, n_history);
-            cell_kinematics(cell, solution, k);
+            const auto         kinematics   = material.kinematics();
+            cell_kinematics(cell, solution, kinematics, k);
             add_body_force(k, cell_fext);
 
             // Stress and tangent of the cell's model at every point.
+            FullMatrix<double> *local_matrix = matrix ? &cell_matrix : nullptr;
             for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
-              {
-                SymmetricTensor<2, 3> stress;
-                SymmetricTensor<4, 3> C;
-                material.evaluate(k.strain[q],
-                                  cell_history[q],
-                                  stress,
-                                  matrix ? &C : nullptr);
-                const auto &B = k.B[q];
-                for (unsigned int i = 0; i < n; ++i)
-                  cell_fint(i) += (stress * B[i]) * k.dV[q];
-                if (matrix)
-                  {
-                    for (unsigned int j = 0; j < n; ++j)
-                      C_B[j] = C * B[j];
-                    for (unsigned int i = 0; i < n; ++i)
-                      for (unsigned int j = 0; j < n; ++j)
-                        cell_matrix(i, j) += (B[i] * C_B[j]) * k.dV[q];
-                  }
-              }
+              if (kinematics == Material::Kinematics::finite_strain)
+                add_finite_strain_point(
+                  material, cell_history[q], q, k, cell_fint, local_matrix);
+              else
+                add_small_strain_point(
+                  material, cell_history[q], q, k, cell_fint, local_matrix);
 
-            add_neumann(cell, *fe_face_values, cell_fext);
+            add_neumann(cell,
+                        solution,
+                        *fe_face_values,
+                        cell_fext,
+                        matrix ? &cell_matrix : nullptr);
 
             cell->get_dof_indices(dofs);
             for (unsigned int i = 0; i < n; ++i)
@@ -247,10 +348,13 @@ namespace Signorini
             cell_fext = 0;
             if (with_body_force)
               {
-                cell_kinematics(cell, solution, k);
+                cell_kinematics(cell,
+                                solution,
+                                materials.at(cell->material_id())->kinematics(),
+                                k);
                 add_body_force(k, cell_fext);
               }
-            add_neumann(cell, *fe_face_values, cell_fext);
+            add_neumann(cell, solution, *fe_face_values, cell_fext, nullptr);
             cell->get_dof_indices(dofs);
             external_force.add(dofs, cell_fext);
           }
@@ -276,9 +380,14 @@ namespace Signorini
             if (n_history == 0)
               continue;
             const auto cell_history = history.on_cell(cell, n_history);
-            cell_kinematics(cell, solution, k);
+            const auto kinematics   = material.kinematics();
+            cell_kinematics(cell, solution, kinematics, k);
             for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
-              material.update_history(k.strain[q], cell_history[q]);
+              if (kinematics == Material::Kinematics::finite_strain)
+                material.update_history_finite_strain(
+                  unit_symmetric_tensor<3>() + k.H[q], cell_history[q]);
+              else
+                material.update_history(k.strain[q], cell_history[q]);
           }
     }
 
@@ -287,11 +396,19 @@ namespace Signorini
     void
     Assembler<dim>::add_neumann(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const TrilinosWrappers::MPI::Vector                  &solution,
       FEFaceValues<dim>                                    &fe_face_values,
-      Vector<double>                                       &cell_fext) const
+      Vector<double>                                       &cell_fext,
+      FullMatrix<double>                                   *cell_matrix) const
     {
-      const auto        &bc = parameters.boundary_conditions;
-      const unsigned int n  = fe.n_dofs_per_cell();
+      const FEValuesExtractors::Vector displacement(0);
+      const auto                      &bc = parameters.boundary_conditions;
+      const unsigned int               n  = fe.n_dofs_per_cell();
+      const unsigned int nq = fe_face_values.get_quadrature().size();
+      const bool finite     = materials.at(cell->material_id())->kinematics() ==
+                          Material::Kinematics::finite_strain;
+      std::vector<Tensor<2, dim>> grad_u(nq);
+      std::vector<Tensor<1, dim>> u(nq);
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary())
           for (unsigned int k = 0; k < bc.neumann.size(); ++k)
@@ -301,20 +418,43 @@ namespace Signorini
               {
                 fe_face_values.reinit(cell, f);
                 const auto &g = *neumann[k];
-                for (unsigned int q = 0;
-                     q < fe_face_values.get_quadrature().size();
-                     ++q)
+                const bool  follower =
+                  finite && bc.neumann[k].type == NeumannType::pressure;
+                if (follower)
                   {
+                    fe_face_values[displacement].get_function_gradients(
+                      solution, grad_u);
+                    fe_face_values[displacement].get_function_values(solution,
+                                                                     u);
+                  }
+                for (unsigned int q = 0; q < nq; ++q)
+                  {
+                    const auto  &x = fe_face_values.quadrature_point(q);
+                    const double ring =
+                      parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.;
+                    if (follower)
+                      {
+                        const Tensor<2, 3> H =
+                          Material::to_3d<dim>(grad_u[q],
+                                               parameters.axisymmetric ?
+                                                 u[q][0] / x[0] :
+                                                 0.);
+                        add_follower_pressure(fe_face_values,
+                                              q,
+                                              g.value(x, 0),
+                                              H,
+                                              ring,
+                                              cell_fext,
+                                              cell_matrix);
+                        continue;
+                      }
                     Tensor<1, dim> traction;
-                    const auto    &x = fe_face_values.quadrature_point(q);
                     if (bc.neumann[k].type == NeumannType::traction)
                       for (unsigned int d = 0; d < dim; ++d)
                         traction[d] = g.value(x, d);
                     else
                       traction =
                         -g.value(x, 0) * fe_face_values.normal_vector(q);
-                    const double ring =
-                      parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.;
                     for (unsigned int i = 0; i < n; ++i)
                       cell_fext(i) +=
                         traction[fe.system_to_component_index(i).first] *
@@ -322,6 +462,56 @@ namespace Signorini
                         fe_face_values.JxW(q) * ring;
                   }
               }
+    }
+
+
+    // Nanson: n da = cof(F) N dA with cof(F) = J F^-T; its derivative in
+    // the direction A = Grad N_j is J (tr(F^-1 A) F^-T - F^-T A^T F^-T).
+    // Axisymmetric, F_33 = r / R makes cof(F) N 2 pi R dA = n da 2 pi r.
+    template <int dim>
+    void
+    Assembler<dim>::add_follower_pressure(
+      const FEFaceValues<dim> &fe_face_values,
+      const unsigned int       q,
+      const double             p,
+      const Tensor<2, 3>      &H,
+      const double             ring,
+      Vector<double>          &cell_fext,
+      FullMatrix<double>      *cell_matrix) const
+    {
+      const FEValuesExtractors::Vector displacement(0);
+      const unsigned int               n      = fe.n_dofs_per_cell();
+      const Tensor<2, 3>               F      = unit_symmetric_tensor<3>() + H;
+      const double                     J      = determinant(F);
+      const Tensor<2, 3>               F_invT = transpose(invert(F));
+      Tensor<1, 3>                     N;
+      for (unsigned int d = 0; d < dim; ++d)
+        N[d] = fe_face_values.normal_vector(q)[d];
+      const double       dA       = fe_face_values.JxW(q) * ring;
+      const Tensor<1, 3> traction = -p * J * (F_invT * N);
+      for (unsigned int i = 0; i < n; ++i)
+        cell_fext(i) += traction[fe.system_to_component_index(i).first] *
+                        fe_face_values.shape_value(i, q) * dA;
+      if (!cell_matrix)
+        return;
+      const double R = fe_face_values.quadrature_point(q)[0];
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const unsigned int cj = fe.system_to_component_index(j).first;
+          const Tensor<2, 3> A =
+            Material::to_3d<dim>(fe_face_values[displacement].gradient(j, q),
+                                 parameters.axisymmetric && cj == 0 ?
+                                   fe_face_values.shape_value(j, q) / R :
+                                   0.);
+          const Tensor<2, 3> d_cof =
+            J * (trace(transpose(F_invT) * A) * F_invT -
+                 F_invT * transpose(A) * F_invT);
+          const Tensor<1, 3> d_traction = -p * (d_cof * N);
+          for (unsigned int i = 0; i < n; ++i)
+            (*cell_matrix)(i, j) -=
+              d_traction[fe.system_to_component_index(i).first] *
+              fe_face_values.shape_value(i, q) * dA;
+        }
     }
 
 

@@ -143,9 +143,17 @@ namespace Signorini
   std::string
   EquilibriumProblem<dim>::non_finite_cause() const
   {
+    const unsigned int inverted =
+      Utilities::MPI::sum(bulk.inverted_points(), system.mpi_communicator);
     return boundary_conditions.non_finite(report.position.time,
                                           system.triangulation,
-                                          system.mpi_communicator);
+                                          system.mpi_communicator) +
+           (inverted == 0 ?
+              std::string() :
+              "; " + std::to_string(inverted) +
+                " bulk quadrature point(s) have det F <= 0 (inverted "
+                "elements at finite strain; a smaller load step or a finer "
+                "mesh where the body deforms most)");
   }
 
 

@@ -299,6 +299,15 @@ namespace Signorini
                       Patterns::Double(-0.999999, 0.499999),
                       "Poisson's ratio nu [-], -1 < nu < 0.5 (plane strain "
                       "in 2D).");
+    prm.declare_entry(
+      "Kinematics",
+      "small strain",
+      Patterns::Selection("small strain|finite strain"),
+      "'small strain': linearised kinematics, eps = sym grad u (the "
+      "contact geometry still follows x = X + u). 'finite strain': total "
+      "Lagrangian, stress from the deformation gradient F = I + Grad u "
+      "with the geometric stiffness, and Neumann pressures that follow the "
+      "deformed surface; needs a model that implements it (neo-Hookean).");
     Material::declare_model_parameters(prm);
   }
 
@@ -308,6 +317,7 @@ namespace Signorini
   {
     material_id    = prm.get_integer("Material id");
     model          = prm.get("Model");
+    finite_strain  = prm.get("Kinematics") == "finite strain";
     youngs_modulus = prm.get_double("Young's modulus");
     poissons_ratio = prm.get_double("Poisson's ratio");
   }

@@ -223,8 +223,11 @@ namespace Signorini
           pcout << "Note: material " << m.material_id << " has Poisson's ratio "
                 << m.poissons_ratio
                 << ": pure-displacement elements lock as nu -> 0.5 (contact "
-                   "pressures too high); set 'Finite element/Volumetric "
-                   "strain = projected'"
+                   "pressures too high); "
+                << (m.finite_strain ?
+                      "at finite strain no projection is available yet: "
+                      "refine, or use Q2" :
+                      "set 'Finite element/Volumetric strain = projected'")
                 << std::endl;
     if (contact.active())
       pcout << "DoFs per block: u " << system.dof_handler.n_dofs()

@@ -23,6 +23,42 @@ namespace Signorini
     }
 
 
+    namespace
+    {
+      // 'Kinematics' of 'Material k': one the model implements, and small
+      // strain with a projected volumetric strain (B-bar has no finite-
+      // strain counterpart here yet).
+      template <int dim>
+      void
+      set_kinematics(Interface<dim>           &model,
+                     const MaterialParameters &m,
+                     const Parameters         &parameters,
+                     const unsigned int        k)
+      {
+        const auto kinematics   = m.finite_strain ? Kinematics::finite_strain :
+                                                    Kinematics::small_strain;
+        const std::string where = "subsection 'Materials/Material " +
+                                  std::to_string(k) +
+                                  "', parameter 'Kinematics': ";
+        if (!model.supports(kinematics))
+          throw InputError(
+            where + "the model '" + m.model + "' has no " +
+            (m.finite_strain ?
+               "finite-strain form; use 'Kinematics = small strain' or a "
+               "finite-strain model ('neo-Hookean')." :
+               "small-strain form; set 'Kinematics = finite strain' (its "
+               "small-strain limit is 'Model = linear elastic')."));
+        if (m.finite_strain && parameters.projected_volumetric_strain)
+          throw InputError(where +
+                           "'finite strain' does not work with 'Finite "
+                           "element/Volumetric strain = projected' (B-bar "
+                           "is small-strain only); set 'Volumetric strain "
+                           "= standard' or 'Kinematics = small strain'.");
+        model.set_kinematics(kinematics);
+      }
+    } // namespace
+
+
     template <int dim>
     std::map<types::material_id, std::unique_ptr<Interface<dim>>>
     make_materials(const Parameters &parameters, ParameterHandler &prm)
@@ -37,6 +73,7 @@ namespace Signorini
                                     "', parameter 'Model'";
           auto model = Registry<dim>::instance().create(m.model, where);
           model->set_elastic_constants(m.youngs_modulus, m.poissons_ratio);
+          set_kinematics(*model, m, parameters, k + 1);
           prm.enter_subsection("Material " + std::to_string(k + 1));
           try
             {

@@ -112,9 +112,9 @@ namespace Signorini
                               quadrature,
                               update_values | update_gradients |
                                 update_quadrature_points | update_JxW_values);
-      const FEValuesExtractors::Vector     displacement(0);
-      std::vector<Tensor<1, dim>>          u_h(quadrature.size());
-      std::vector<SymmetricTensor<2, dim>> eps_h(quadrature.size());
+      const FEValuesExtractors::Vector displacement(0);
+      std::vector<Tensor<1, dim>>      u_h(quadrature.size());
+      std::vector<Tensor<2, dim>>      grad_h(quadrature.size());
       // Projected volumetric strain: the stress with theta_bar.
       Material::ProjectedVolumetricStrain<dim> projection(fe,
                                                           quadrature,
@@ -126,8 +126,8 @@ namespace Signorini
           {
             fe_values.reinit(cell);
             fe_values[displacement].get_function_values(data.displacement, u_h);
-            fe_values[displacement].get_function_symmetric_gradients(
-              data.displacement, eps_h);
+            fe_values[displacement].get_function_gradients(data.displacement,
+                                                           grad_h);
             if (s_exact && projected)
               {
                 projection.reinit(fe_values);
@@ -153,21 +153,20 @@ namespace Signorini
                 const double theta =
                   projected ? projection.value(theta_bar, quadrature.point(q)) :
                               0.;
-                SymmetricTensor<2, 3> stress;
+                const SymmetricTensor<2, 3> strain =
+                  Bulk::point_strain<dim>(symmetrize(grad_h[q]),
+                                          hoop,
+                                          projected ? &theta : nullptr);
                 // A model with history: that of the nearest bulk point.
                 const unsigned int n_history = material.n_history_values();
-                material.evaluate(Bulk::point_strain<dim>(eps_h[q],
-                                                          hoop,
-                                                          projected ? &theta :
-                                                                      nullptr),
-                                  n_history == 0 ?
-                                    ArrayView<const double>() :
-                                    data.history.at(cell,
-                                                    data.history.nearest_point(
-                                                      quadrature.point(q)),
-                                                    n_history),
-                                  stress,
-                                  nullptr);
+                const SymmetricTensor<2, 3> stress = material.cauchy_stress(
+                  Material::to_3d<dim>(grad_h[q], hoop),
+                  n_history == 0 ? ArrayView<const double>() :
+                                   data.history.at(cell,
+                                                   data.history.nearest_point(
+                                                     quadrature.point(q)),
+                                                   n_history),
+                  &strain);
                 const auto sigma = Material::from_3d<dim>(stress);
                 double     e2 = 0, n2 = 0;
                 for (unsigned int i = 0; i < dim; ++i)

@@ -34,6 +34,19 @@
  *   eps_bar = eps + (theta_bar - tr eps) / 3 I,
  * for every model alike; the Jacobian uses the matching B-bar operator.
  *
+ * Kinematics (finite strain, per material: Material::Interface::
+ * kinematics()), total Lagrangian as in step-44: F = I + H with H the 3D
+ * displacement gradient (H_33 = u_r / R axisymmetric), the model gives the
+ * Kirchhoff stress tau and its spatial tangent c; with g_i = Grad N_i F^-1
+ * the spatial gradient of shape function i and d_i = sym g_i,
+ *   F_int,i = int tau : d_i dV,
+ *   K_ij    = int d_i : c : d_j + g_i : (g_j tau) dV
+ * (material and geometric stiffness), over the reference volume dV. A
+ * Neumann pressure p then follows the deformed surface: the traction is
+ * -p cof(F) N per reference area, with its derivative in K (the load
+ * stiffness). A traction stays a dead load per reference area, the body
+ * force one per reference volume.
+ *
  * Models with history (Material::History) see the values committed at the
  * end of the last converged step; update_history() commits new ones from a
  * converged solution.
@@ -114,6 +127,15 @@ namespace Signorini
                      const TrilinosWrappers::MPI::Vector &solution,
                      Material::History<dim>              &history) const;
 
+      /** The number of bulk quadrature points of this rank whose
+       * deformation gradient had det F <= 0 (inverted elements) at the last
+       * assemble(); their stress is NaN, so the residual is not finite. */
+      unsigned int
+      inverted_points() const
+      {
+        return n_inverted;
+      }
+
       /** The bulk quadrature rule (that of the history). */
       const Quadrature<dim> &
       quadrature() const
@@ -142,14 +164,42 @@ namespace Signorini
         std::vector<Tensor<1, dim>>                     u_values;
         std::vector<double>                             theta_i, dtheta_bar;
         Vector<double>                                  local_u, theta_bar;
+        // Finite strain: the 3D displacement gradient H of the solution and
+        // the 3D gradient Grad N_i of each shape function at each point.
+        std::vector<Tensor<2, dim>>            full_gradients;
+        std::vector<Tensor<2, 3>>              H;
+        std::vector<std::vector<Tensor<2, 3>>> grad_N;
+        std::vector<Tensor<2, 3>>              g, g_tau;
+        std::vector<SymmetricTensor<2, 3>>     d, c_d;
       };
 
-      /** Fills @p k for @p cell and @p solution. */
+      /** Fills @p k for @p cell and @p solution with the @p kinematics of
+       * the cell's material. */
       void
       cell_kinematics(
         const typename DoFHandler<dim>::active_cell_iterator &cell,
         const TrilinosWrappers::MPI::Vector                  &solution,
+        const Material::Kinematics                            kinematics,
         CellKinematics                                       &k) const;
+
+      /** Small strain: internal force and (if @p matrix) tangent of point
+       * @p q of the cell of @p k into @p f_int and @p matrix. */
+      void
+      add_small_strain_point(const Material::Interface<dim> &material,
+                             const ArrayView<const double>  &history,
+                             const unsigned int              q,
+                             CellKinematics                 &k,
+                             Vector<double>                 &f_int,
+                             FullMatrix<double>             *matrix) const;
+
+      /** Finite strain: the same, total Lagrangian (class documentation). */
+      void
+      add_finite_strain_point(const Material::Interface<dim> &material,
+                              const ArrayView<const double>  &history,
+                              const unsigned int              q,
+                              CellKinematics                 &k,
+                              Vector<double>                 &f_int,
+                              FullMatrix<double>             *matrix) const;
 
       /** The body force of the cell of @p k into @p cell_fext. */
       void
@@ -160,11 +210,27 @@ namespace Signorini
       neumann_face_values() const;
 
       /** Neumann tractions of the boundary faces of @p cell into
-       * @p cell_fext. */
+       * @p cell_fext; at finite strain a pressure follows the deformed
+       * face of @p solution, and its load stiffness goes into
+       * @p cell_matrix if given. */
       void
       add_neumann(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                  FEFaceValues<dim> &fe_face_values,
-                  Vector<double>    &cell_fext) const;
+                  const TrilinosWrappers::MPI::Vector &solution,
+                  FEFaceValues<dim>                   &fe_face_values,
+                  Vector<double>                      &cell_fext,
+                  FullMatrix<double>                  *cell_matrix) const;
+
+      /** The follower pressure @p p at face point @p q of a finite-strain
+       * cell: its traction into @p cell_fext and, if given, minus its
+       * derivative into @p cell_matrix. */
+      void
+      add_follower_pressure(const FEFaceValues<dim> &fe_face_values,
+                            const unsigned int       q,
+                            const double             p,
+                            const Tensor<2, 3>      &H,
+                            const double             ring,
+                            Vector<double>          &cell_fext,
+                            FullMatrix<double>      *cell_matrix) const;
 
       const Parameters                                        &parameters;
       const Mapping<dim>                                      &mapping;
@@ -173,6 +239,7 @@ namespace Signorini
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann;
       const FunctionParser<dim>                               &body_force;
       const QGauss<dim>                                        cell_quadrature;
+      mutable unsigned int                                     n_inverted = 0;
     };
   } // namespace Bulk
 } // namespace Signorini

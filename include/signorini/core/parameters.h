@@ -93,7 +93,8 @@ namespace Signorini
   struct MaterialParameters
   {
     unsigned int material_id;
-    std::string  model; // a name of the Material plug-in family
+    std::string  model;         // a name of the Material plug-in family
+    bool         finite_strain; // 'Kinematics = finite strain'
     double       youngs_modulus;
     double       poissons_ratio;
 

@@ -2,8 +2,10 @@
 #define signorini_material_interface_h
 
 #include <deal.II/base/array_view.h>
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
 #include <signorini/core/parameters.h>
@@ -41,6 +43,15 @@
  * Line-search trials, the Jacobian check and cut steps therefore never
  * reach the history.
  *
+ * Kinematics ('Material k/Kinematics', per material): with small strain a
+ * model maps the strain eps = sym H to the Cauchy stress (evaluate());
+ * with finite strain it maps the deformation gradient F = I + H to the
+ * Kirchhoff stress tau = J sigma and its spatial tangent
+ * (evaluate_finite_strain()). H is the 3D displacement gradient of the
+ * point, in 2D with H_33 = 0 (plane strain) or u_r / R (axisymmetric:
+ * F_33 = r / R, the hoop stretch). A model says which kinematics it
+ * implements (supports()); make_materials() refuses the others.
+ *
  * A new model: a class derived from Interface<dim> with a static
  * declare_parameters(ParameterHandler &), registered in its source file
  * with SIGNORINI_REGISTER_MATERIAL(Class, "name", "description")
@@ -66,6 +77,29 @@ namespace Signorini
         e[2][2] = strain_33;
       return e;
     }
+
+    /** The 3D displacement gradient of a point: @p grad in the plane (or
+     * in 3D) and, in 2D, @p h_33 normal to it (0 in plane strain, u_r / R
+     * axisymmetric). */
+    template <int dim>
+    Tensor<2, 3>
+    to_3d(const Tensor<2, dim> &grad, const double h_33 = 0.)
+    {
+      Tensor<2, 3> h;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          h[i][j] = grad[i][j];
+      if (dim == 2)
+        h[2][2] = h_33;
+      return h;
+    }
+
+    /** The kinematics of a material ('Material k/Kinematics'). */
+    enum class Kinematics
+    {
+      small_strain,
+      finite_strain
+    };
 
     /** The in-plane (or 3D) part of a 3D tensor. */
     template <int dim>
@@ -113,18 +147,88 @@ namespace Signorini
         (void)prm;
       }
 
+      /** True if the model implements @p kinematics. Default: small
+       * strain only. */
+      virtual bool
+      supports(const Kinematics kinematics) const
+      {
+        return kinematics == Kinematics::small_strain;
+      }
+
+      /** The kinematics this material runs with (set by make_materials()
+       * from 'Material k/Kinematics'). */
+      Kinematics
+      kinematics() const
+      {
+        return used_kinematics;
+      }
+
+      void
+      set_kinematics(const Kinematics kinematics)
+      {
+        used_kinematics = kinematics;
+      }
+
       /**
-       * The Cauchy stress at a point for the 3D small strain @p strain
-       * [Pa], and if @p tangent is given its derivative d sigma / d eps
-       * (the consistent tangent of a model with history). @p history: the
-       * point's committed values (n_history_values() of them; empty for a
-       * model without history).
+       * Small strain: the Cauchy stress at a point for the 3D small strain
+       * @p strain [Pa], and if @p tangent is given its derivative
+       * d sigma / d eps (the consistent tangent of a model with history).
+       * @p history: the point's committed values (n_history_values() of
+       * them; empty for a model without history). Default: not
+       * implemented (supports() says false).
        */
       virtual void
       evaluate(const SymmetricTensor<2, 3>   &strain,
                const ArrayView<const double> &history,
                SymmetricTensor<2, 3>         &stress,
-               SymmetricTensor<4, 3>         *tangent) const = 0;
+               SymmetricTensor<4, 3>         *tangent) const
+      {
+        (void)strain;
+        (void)history;
+        (void)stress;
+        (void)tangent;
+        AssertThrow(false, ExcInternalError());
+      }
+
+      /**
+       * Finite strain: the Kirchhoff stress tau = J sigma [Pa] at the 3D
+       * deformation gradient @p F, and if @p tangent is given the spatial
+       * tangent c of the Lie derivative of tau (step-44's J c):
+       *   d tau = c : sym(l) + l tau + tau l^T,  l = dF F^-1.
+       * Default: not implemented (supports() says false).
+       */
+      virtual void
+      evaluate_finite_strain(const Tensor<2, 3>            &F,
+                             const ArrayView<const double> &history,
+                             SymmetricTensor<2, 3>         &tau,
+                             SymmetricTensor<4, 3>         *tangent) const
+      {
+        (void)F;
+        (void)history;
+        (void)tau;
+        (void)tangent;
+        AssertThrow(false, ExcInternalError());
+      }
+
+      /** The Cauchy stress [Pa] at the 3D displacement gradient @p H with
+       * the material's kinematics; small strain: of the strain sym H, or
+       * of @p strain if given (B-bar). */
+      SymmetricTensor<2, 3>
+      cauchy_stress(const Tensor<2, 3>            &H,
+                    const ArrayView<const double> &history,
+                    const SymmetricTensor<2, 3>   *strain = nullptr) const
+      {
+        SymmetricTensor<2, 3> stress;
+        if (used_kinematics == Kinematics::small_strain)
+          evaluate(strain ? *strain : symmetrize(H), history, stress, nullptr);
+        else
+          {
+            const Tensor<2, 3> F = unit_symmetric_tensor<3>() + H;
+            evaluate_finite_strain(F, history, stress, nullptr);
+            stress /= determinant(F);
+          }
+        return stress;
+      }
 
       /** Number of history values per quadrature point. Default: 0. */
       virtual unsigned int
@@ -141,6 +245,16 @@ namespace Signorini
                      const ArrayView<double>     &history) const
       {
         (void)strain;
+        (void)history;
+      }
+
+      /** update_history() at finite strain, from the converged
+       * deformation gradient @p F. Default (no history): nothing. */
+      virtual void
+      update_history_finite_strain(const Tensor<2, 3>      &F,
+                                   const ArrayView<double> &history) const
+      {
+        (void)F;
         (void)history;
       }
 
@@ -198,7 +312,8 @@ namespace Signorini
       }
 
     protected:
-      double E = 0, nu = 0, lambda = 0, mu = 0;
+      double     E = 0, nu = 0, lambda = 0, mu = 0;
+      Kinematics used_kinematics = Kinematics::small_strain;
     };
 
     /** The registry of the family (dim 2 and 3 share the names). */

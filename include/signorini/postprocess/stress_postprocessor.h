@@ -14,7 +14,9 @@
 
 /**
  * Cauchy stress components [Pa] and the von Mises stress for DataOut, from
- * the displacement gradient and the material of each cell (by material id).
+ * the displacement gradient and the material of each cell (by material id;
+ * Material::Interface::cauchy_stress(), at finite strain tau / J, plotted
+ * at the reference position of the point).
  * In 2D the stress normal to the plane is written too (stress_zz, or
  * stress_hoop axisymmetric). The strain is that of the equilibrium
  * (Bulk::point_strain(): with B-bar its volumetric part is theta_bar).
@@ -115,24 +117,24 @@ namespace Signorini
           }
         for (unsigned int q = 0; q < computed.size(); ++q)
           {
-            SymmetricTensor<2, dim> strain;
+            Tensor<2, dim> grad;
             for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int j = i; j < dim; ++j)
-                strain[i][j] = 0.5 * (inputs.solution_gradients[q][i][j] +
-                                      inputs.solution_gradients[q][j][i]);
+              for (unsigned int j = 0; j < dim; ++j)
+                grad[i][j] = inputs.solution_gradients[q][i][j];
             // Hoop strain u_r / r; on the axis its limit du_r/dr.
-            const double          r         = inputs.evaluation_points.empty() ?
-                                                0. :
-                                                inputs.evaluation_points[q][0];
-            const double          hoop      = !axisymmetric ? 0. :
-                                              r > 0 ? inputs.solution_values[q][0] / r :
-                                                      inputs.solution_gradients[q][0][0];
-            const unsigned int    n_history = material.n_history_values();
-            SymmetricTensor<2, 3> stress;
-            material.evaluate(
-              Bulk::point_strain<dim>(strain,
+            const double                r = inputs.evaluation_points.empty() ?
+                                              0. :
+                                              inputs.evaluation_points[q][0];
+            const double                hoop      = !axisymmetric ? 0. :
+                                                    r > 0 ? inputs.solution_values[q][0] / r :
+                                                            inputs.solution_gradients[q][0][0];
+            const unsigned int          n_history = material.n_history_values();
+            const SymmetricTensor<2, 3> strain =
+              Bulk::point_strain<dim>(symmetrize(grad),
                                       hoop,
-                                      projected ? &volumetric[q] : nullptr),
+                                      projected ? &volumetric[q] : nullptr);
+            const SymmetricTensor<2, 3> stress = material.cauchy_stress(
+              Material::to_3d<dim>(grad, hoop),
               n_history == 0 ?
                 ArrayView<const double>() :
                 history.at(cell,
@@ -140,8 +142,7 @@ namespace Signorini
                              mapping.transform_real_to_unit_cell(
                                cell, inputs.evaluation_points[q])),
                            n_history),
-              stress,
-              nullptr);
+              &strain);
             unsigned int k = 0;
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = i; j < dim; ++j)
