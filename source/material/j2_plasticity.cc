@@ -1,6 +1,7 @@
 #include <signorini/core/errors.h>
 #include <signorini/material/j2_plasticity.h>
 
+#include <array>
 #include <cmath>
 
 namespace Signorini
@@ -43,6 +44,13 @@ namespace Signorini
       isotropic_hardening = prm.get_double("Isotropic hardening modulus");
       kinematic_hardening = prm.get_double("Kinematic hardening modulus");
       prm.leave_subsection();
+      if (finite() && kinematic_hardening > 0)
+        throw InputError("subsection 'J2 plasticity', parameter 'Kinematic "
+                         "hardening modulus': with 'Kinematics = finite "
+                         "strain' only isotropic hardening is available "
+                         "(a back stress would need a transport between "
+                         "configurations); set it to 0 or use 'Kinematics "
+                         "= small strain'.");
       if (!(yield_stress > 0))
         throw InputError("subsection 'J2 plasticity', parameter 'Yield "
                          "stress': it is 0; give the "
@@ -157,6 +165,134 @@ namespace Signorini
     }
 
 
+    namespace
+    {
+      // Symmetric function of a symmetric tensor through its eigenbasis.
+      template <typename Function>
+      SymmetricTensor<2, 3>
+      spectral(const SymmetricTensor<2, 3> &A, const Function &f)
+      {
+        const auto            eig = eigenvectors(A);
+        SymmetricTensor<2, 3> r;
+        for (const auto &[x, n] : eig)
+          r += f(x) * symmetrize(outer_product(n, n));
+        return r;
+      }
+
+      // The derivative of ln(b) in the direction db (Daleckii-Krein): in
+      // the eigenbasis of b, theta_AB (n_A . db n_B) with theta_AB the
+      // divided difference of ln at the eigenvalues x_A, x_B (1 / x_A when
+      // they coincide; the geometric mean keeps the limit to second order).
+      SymmetricTensor<2, 3>
+      log_derivative(const std::array<std::pair<double, Tensor<1, 3>>, 3> &eig,
+                     const SymmetricTensor<2, 3>                          &db)
+      {
+        SymmetricTensor<2, 3> r;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            {
+              const double xa = eig[a].first, xb = eig[b].first;
+              const double theta = std::abs(xa - xb) > 1e-8 * std::max(xa, xb) ?
+                                     (std::log(xa) - std::log(xb)) / (xa - xb) :
+                                     1 / std::sqrt(xa * xb);
+              const double component = eig[a].second * (db * eig[b].second);
+              r += theta * component *
+                   symmetrize(outer_product(eig[a].second, eig[b].second));
+            }
+        return r;
+      }
+    } // namespace
+
+
+    template <int dim>
+    typename J2Plasticity<dim>::State
+    J2Plasticity<dim>::finite_return(const Tensor<2, 3>            &F,
+                                     const ArrayView<const double> &history,
+                                     SymmetricTensor<2, 3>         &eps_tr,
+                                     SymmetricTensor<2, 3>         &b_tr,
+                                     SymmetricTensor<2, 3>         &tau,
+                                     SymmetricTensor<4, 3>         *D) const
+    {
+      AssertDimension(history.size(), 7);
+      SymmetricTensor<2, 3> Cp_inv = unit_symmetric_tensor<3>();
+      for (unsigned int k = 0; k < 6; ++k)
+        Cp_inv[SymmetricTensor<2, 3>::unrolled_to_component_indices(k)] +=
+          history[k];
+      b_tr   = symmetrize(F * Tensor<2, 3>(Cp_inv) * transpose(F));
+      eps_tr = spectral(b_tr, [](const double x) { return 0.5 * std::log(x); });
+      State old;
+      old.alpha = history[6];
+      return return_mapping(eps_tr, old, tau, D);
+    }
+
+
+    template <int dim>
+    void
+    J2Plasticity<dim>::evaluate_finite_strain(
+      const Tensor<2, 3>            &F,
+      const ArrayView<const double> &history,
+      SymmetricTensor<2, 3>         &tau,
+      SymmetricTensor<4, 3>         *tangent) const
+    {
+      SymmetricTensor<2, 3> eps_tr, b;
+      SymmetricTensor<4, 3> D;
+      finite_return(F, history, eps_tr, b, tau, tangent ? &D : nullptr);
+      if (!tangent)
+        return;
+      // c : d for the 6 symmetric unit directions d (both shear entries 1:
+      // c : d = 2 c_ijkl).
+      const auto eig = eigenvectors(b);
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          const auto kl =
+            SymmetricTensor<2, 3>::unrolled_to_component_indices(k);
+          SymmetricTensor<2, 3> d;
+          d[kl] = 1;
+          const SymmetricTensor<2, 3> db =
+            symmetrize(Tensor<2, 3>(d) * Tensor<2, 3>(b) +
+                       Tensor<2, 3>(b) * Tensor<2, 3>(d));
+          const SymmetricTensor<2, 3> column =
+            D * (0.5 * log_derivative(eig, db)) -
+            symmetrize(Tensor<2, 3>(d) * Tensor<2, 3>(tau) +
+                       Tensor<2, 3>(tau) * Tensor<2, 3>(d));
+          const double scale = kl[0] == kl[1] ? 1. : 0.5;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = i; j < 3; ++j)
+              (*tangent)[i][j][kl[0]][kl[1]] = scale * column[i][j];
+        }
+    }
+
+
+    template <int dim>
+    void
+    J2Plasticity<dim>::update_history_finite_strain(
+      const Tensor<2, 3>      &F,
+      const ArrayView<double> &history) const
+    {
+      SymmetricTensor<2, 3> eps_tr, b, tau;
+      const State           state =
+        finite_return(F,
+                      ArrayView<const double>(history.data(), history.size()),
+                      eps_tr,
+                      b,
+                      tau,
+                      nullptr);
+      const SymmetricTensor<2, 3> b_e =
+        spectral(eps_tr - state.plastic_strain,
+                 [](const double e) { return std::exp(2 * e); });
+      const Tensor<2, 3>          F_inv = invert(F);
+      const SymmetricTensor<2, 3> Cp_inv =
+        symmetrize(F_inv * Tensor<2, 3>(b_e) * transpose(F_inv));
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          const auto ij =
+            SymmetricTensor<2, 3>::unrolled_to_component_indices(k);
+          history[k] = Cp_inv[ij] - (ij[0] == ij[1] ? 1. : 0.);
+        }
+      history[6] = state.alpha;
+    }
+
+
     template class J2Plasticity<2>;
     template class J2Plasticity<3>;
   } // namespace Material
@@ -164,6 +300,8 @@ namespace Signorini
 
 SIGNORINI_REGISTER_MATERIAL(Signorini::Material::J2Plasticity,
                             "J2 plasticity",
-                            "small-strain von Mises plasticity with linear "
-                            "isotropic and kinematic hardening, radial return "
-                            "and consistent tangent")
+                            "von Mises plasticity with linear isotropic and "
+                            "kinematic hardening, radial return and "
+                            "consistent tangent; at finite strain Hencky "
+                            "elasticity with Simo's exponential-map return "
+                            "(isotropic hardening)")

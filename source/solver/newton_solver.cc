@@ -141,7 +141,10 @@ namespace Signorini
           if (search)
             {
               const double r_full = norm_of(evaluation.block);
-              if (r_full > (1 - 1e-4) * search_residual)
+              // A non-finite trial (at finite strain: an element turned
+              // inside out by the full update) is backtracked too.
+              if (!std::isfinite(r_full) ||
+                  r_full > (1 - 1e-4) * search_residual)
                 {
                   problem.restore(*saved);
                   const double alpha = line_search(problem,
@@ -311,7 +314,8 @@ namespace Signorini
     // Backtracking on the residual norm: try 1/2, 1/4, ... of the update
     // and take the first fraction that decreases the residual, else the
     // one with the smallest residual (1 if no fraction beats the full
-    // update). Each trial is an evaluation outside the status history; the
+    // update; a full update with a non-finite residual is beaten by every
+    // finite one). Each trial is an evaluation outside the status history; the
     // problem is left as it was on entry.
     double
     NewtonSolver::line_search(NonlinearProblem                    &problem,
@@ -322,15 +326,27 @@ namespace Signorini
                               Result      &result) const
     {
       TimerOutput::Scope t(timer, "line search");
-      const auto         saved = problem.save();
-      double             best = residual_full, best_alpha = 1, alpha = 1;
-      for (unsigned int k = 1; k <= parameters.line_search_steps; ++k)
+      const auto         saved      = problem.save();
+      double             best       = std::isfinite(residual_full) ?
+                                        residual_full :
+                                        std::numeric_limits<double>::infinity();
+      double             best_alpha = 1, alpha = 1;
+      // A trial whose residual is not finite (an element turned inside out
+      // at finite strain) is no admissible state: it is halved again
+      // without counting as a step, down to 2^-20 of the update.
+      unsigned int counted = 0;
+      for (unsigned int k = 1;
+           k <= 20 && counted < parameters.line_search_steps;
+           ++k)
         {
           alpha *= 0.5;
           TrilinosWrappers::MPI::Vector trial = base;
           trial.add(alpha, update);
           problem.set_iterate(trial);
           const double r = norm_of(problem.evaluate(true).block);
+          if (!std::isfinite(r))
+            continue;
+          ++counted;
           if (r < best)
             {
               best       = r;

@@ -31,6 +31,20 @@ namespace Signorini
      *
      * History per point (13 values): eps_p (6), beta (6), alpha.
      * Parameters: subsection 'J2 plasticity' of 'Material k'.
+     *
+     * Finite strain ('Kinematics = finite strain'; isotropic hardening
+     * only): multiplicative split F = F_e F_p with the exponential-map
+     * return of Simo (1992) and Hencky (logarithmic) elasticity. With the
+     * committed C_p^-1, the trial b_e = F C_p^-1 F^T and its logarithmic
+     * strain eps_tr = 1/2 ln b_e, the radial return above, applied to
+     * eps_tr with eps_p = 0, gives the Kirchhoff stress tau and the return
+     * D = d tau / d eps_tr; the spatial tangent is
+     *   c : d = D : (1/2 L : (d b_e + b_e d)) - (d tau + tau d),
+     * with L the derivative of the tensor logarithm (Daleckii-Krein in the
+     * eigenbasis of b_e). The converged elastic strain eps_e = eps_tr -
+     * Delta gamma n gives b_e = exp(2 eps_e) and C_p^-1 = F^-1 b_e F^-T.
+     * In uniaxial stress tau against ln(stretch) is the small-strain curve.
+     * History (7 values): C_p^-1 - I (6), alpha.
      */
     template <int dim>
     class J2Plasticity : public Interface<dim>
@@ -48,15 +62,32 @@ namespace Signorini
                SymmetricTensor<2, 3>         &stress,
                SymmetricTensor<4, 3>         *tangent) const override;
 
+      bool
+      supports(const Kinematics) const override
+      {
+        return true;
+      }
+
       unsigned int
       n_history_values() const override
       {
-        return 13;
+        return finite() ? 7 : 13;
       }
 
       void
       update_history(const SymmetricTensor<2, 3> &strain,
                      const ArrayView<double>     &history) const override;
+
+      void
+      evaluate_finite_strain(const Tensor<2, 3>            &F,
+                             const ArrayView<const double> &history,
+                             SymmetricTensor<2, 3>         &tau,
+                             SymmetricTensor<4, 3> *tangent) const override;
+
+      void
+      update_history_finite_strain(
+        const Tensor<2, 3>      &F,
+        const ArrayView<double> &history) const override;
 
       /** The equivalent plastic strain alpha (accumulated
        * sqrt(2/3) |d eps_p|); positive where the material has yielded. */
@@ -69,7 +100,7 @@ namespace Signorini
       std::vector<double>
       history_output(const ArrayView<const double> &history) const override
       {
-        return {history[12]};
+        return {history[finite() ? 6 : 12]};
       }
 
       bool
@@ -100,7 +131,24 @@ namespace Signorini
       static void
       pack(const State &state, const ArrayView<double> &history);
 
+      /** Finite strain: the trial logarithmic elastic strain eps_tr =
+       * 1/2 ln(F C_p^-1 F^T) of the committed @p history, the return from
+       * it (stress tau, tangent D if asked), and the state. */
+      State
+      finite_return(const Tensor<2, 3>            &F,
+                    const ArrayView<const double> &history,
+                    SymmetricTensor<2, 3>         &eps_tr,
+                    SymmetricTensor<2, 3>         &b_tr,
+                    SymmetricTensor<2, 3>         &tau,
+                    SymmetricTensor<4, 3>         *D) const;
+
     private:
+      bool
+      finite() const
+      {
+        return this->kinematics() == Kinematics::finite_strain;
+      }
+
       double yield_stress = 0, isotropic_hardening = 0, kinematic_hardening = 0;
     };
   } // namespace Material
