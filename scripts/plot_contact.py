@@ -37,7 +37,10 @@ def last_csv(directory):
     with open(files[-1]) as f:
         rows = []
         for row in csv.DictReader(f):
-            rows.append({k: (v if k == "status" else float(v))
+            # An empty field is a missing value (the gap of a point with
+            # no master face).
+            rows.append({k: (v if k == "status" else
+                             float(v) if v != "" else math.nan)
                          for k, v in row.items()})
     return rows
 
@@ -194,7 +197,7 @@ def plot_mindlin_traction(runs, figures):
 
 def plot_ironing_forces(runs, figures):
     """Contact force components on the slab against the die's travel in B4
-    (prm/b4_ironing.prm)."""
+    (prm/b4_ironing.prm), small and finite strain."""
     path = runs / "b4_ironing" / "statistics.csv"
     if not path.exists():
         return
@@ -208,6 +211,16 @@ def plot_ironing_forces(runs, figures):
     ax.plot(s, fx, "s-", ms=3, label="$|F_x|$ (along the slab)")
     ax.plot([s[i] for i in press], [fy[i] for i in press], "ko", ms=3,
             mfc="none", label="pressing steps (die travel 0)")
+    # The same scene with a neo-Hookean slab at finite strain
+    # (prm/b4_ironing_finite_strain.prm).
+    finite = runs / "b4_ironing_finite_strain" / "statistics.csv"
+    if finite.exists():
+        rows = statistics(finite)
+        s = [r["obstacle_displacement_1_x"] for r in rows]
+        ax.plot(s, [abs(r["contact_force_1_y"]) for r in rows], "o--",
+                ms=3, mfc="none", label="$|F_y|$, finite strain (neo-Hookean)")
+        ax.plot(s, [abs(r["contact_force_1_x"]) for r in rows], "s--",
+                ms=3, mfc="none", label="$|F_x|$, finite strain (neo-Hookean)")
     ax.set_xlabel("die travel along the slab")
     ax.set_ylabel("contact force on the slab")
     ax.set_title("B4 ironing: contact force per load step")

@@ -820,8 +820,11 @@ namespace Signorini
       "constant for Q1, the mean dilatation). Pure-displacement elements "
       "lock as nu -> 0.5 (B2 Hertz at nu = 0.4999: p0 32 % high in 2D, 2.5 "
       "times Hertz in 3D); projected removes the locking (0.5 % and 3 %, "
-      "doc/robustness.md). The stresses written and checked take their "
-      "volumetric part from the projection, as the equilibrium does.");
+      "doc/robustness.md). At finite strain the projected quantity is ln "
+      "J and the model sees F_bar = exp((theta_bar - ln J) / 3) F (F-bar); "
+      "it also removes the locking of isochoric plastic flow. The stresses "
+      "written and checked take their volumetric part from the "
+      "projection, as the equilibrium does.");
     prm.leave_subsection();
     GeometryParameters::declare_parameters(prm, counts);
     prm.enter_subsection("Materials");

@@ -362,6 +362,11 @@ namespace Signorini
                         "component x, y or z and an optional relative "
                         "tolerance of its own (else 'Point value tolerance'), "
                         "e.g. '0.00125, 0 : x : 2.72e-5 : 0.01'.");
+      prm.declare_entry("Point values from time",
+                        "0",
+                        Patterns::Double(),
+                        "The 'Point values' checks run at the steps with t >= "
+                        "this time (e.g. only the last step of a load path).");
       prm.declare_entry("Point value tolerance",
                         "0.05",
                         Patterns::Double(0),
@@ -482,6 +487,7 @@ namespace Signorini
     contact_pressure             = prm.get("Contact pressure");
     pressure_l2_tolerance        = prm.get_double("Pressure L2 tolerance");
     point_value_tolerance        = prm.get_double("Point value tolerance");
+    point_values_from            = prm.get_double("Point values from time");
     action_reaction_tolerance    = prm.get_double("Action-reaction tolerance");
     slip_law_tolerance           = prm.get_double("Slip law tolerance");
     contact_force                = split_expressions(prm.get("Contact force"));

@@ -224,10 +224,7 @@ namespace Signorini
                 << m.poissons_ratio
                 << ": pure-displacement elements lock as nu -> 0.5 (contact "
                    "pressures too high); "
-                << (m.finite_strain ?
-                      "at finite strain no projection is available yet: "
-                      "refine, or use Q2" :
-                      "set 'Finite element/Volumetric strain = projected'")
+                << "set 'Finite element/Volumetric strain = projected'"
                 << std::endl;
     if (contact.active())
       pcout << "DoFs per block: u " << system.dof_handler.n_dofs()

@@ -25,15 +25,13 @@ namespace Signorini
 
     namespace
     {
-      // 'Kinematics' of 'Material k': one the model implements, and small
-      // strain with a projected volumetric strain (B-bar has no finite-
-      // strain counterpart here yet).
+      // 'Kinematics' of 'Material k': one the model implements.
       template <int dim>
       void
       set_kinematics(Interface<dim>           &model,
                      const MaterialParameters &m,
-                     const Parameters         &parameters,
-                     const unsigned int        k)
+                     const Parameters &,
+                     const unsigned int k)
       {
         const auto kinematics   = m.finite_strain ? Kinematics::finite_strain :
                                                     Kinematics::small_strain;
@@ -48,12 +46,6 @@ namespace Signorini
                "finite-strain model ('neo-Hookean')." :
                "small-strain form; set 'Kinematics = finite strain' (its "
                "small-strain limit is 'Model = linear elastic')."));
-        if (m.finite_strain && parameters.projected_volumetric_strain)
-          throw InputError(where +
-                           "'finite strain' does not work with 'Finite "
-                           "element/Volumetric strain = projected' (B-bar "
-                           "is small-strain only); set 'Volumetric strain "
-                           "= standard' or 'Kinematics = small strain'.");
         model.set_kinematics(kinematics);
       }
     } // namespace

@@ -228,7 +228,21 @@ namespace Signorini
         results.push_back(check_contact_force(summary[0], time));
       if (ref.action_reaction_tolerance > 0 || ref.slip_law_tolerance > 0)
         check_laws(contact, state, force_level, results);
-      for (const auto &pv : ref.point_values)
+      return results;
+    }
+
+
+    template <int dim>
+    std::vector<CheckResult>
+    ContactChecks<dim>::point_values(
+      const double time,
+      const std::function<double(const Point<dim> &, const unsigned int)>
+        &displacement_at) const
+    {
+      std::vector<CheckResult> results;
+      if (time < parameters.reference.point_values_from)
+        return results;
+      for (const auto &pv : parameters.reference.point_values)
         results.push_back(check_point_value(pv, displacement_at));
       return results;
     }

@@ -41,6 +41,8 @@ namespace Signorini
                                            data.force_level,
                                            data.displacement_at))
             results.push_back(std::move(r));
+        for (auto &r : contact->point_values(data.time, data.displacement_at))
+          results.push_back(std::move(r));
         return results;
       }
 

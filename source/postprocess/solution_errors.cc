@@ -120,7 +120,17 @@ namespace Signorini
                                                           quadrature,
                                                           axisymmetric);
       Vector<double> local_u(fe.n_dofs_per_cell()), theta_bar;
-      Sums           s;
+      // Finite strain: ln J is projected on the bulk rule (as assembled).
+      const QGauss<dim>                        bulk_rule(fe.degree + 1);
+      FEValues<dim>                            bulk_values(data.mapping,
+                                fe,
+                                bulk_rule,
+                                update_values | update_gradients |
+                                  update_quadrature_points | update_JxW_values);
+      Material::ProjectedVolumetricStrain<dim> bulk_projection(fe,
+                                                               bulk_rule,
+                                                               axisymmetric);
+      Sums                                     s;
       for (const auto &cell : data.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -128,13 +138,24 @@ namespace Signorini
             fe_values[displacement].get_function_values(data.displacement, u_h);
             fe_values[displacement].get_function_gradients(data.displacement,
                                                            grad_h);
-            if (s_exact && projected)
+            const auto &material = *data.materials.at(cell->material_id());
+            if (s_exact && projected &&
+                material.kinematics() == Material::Kinematics::finite_strain)
+              {
+                // ln J projected on the bulk rule, as in the assembly.
+                bulk_values.reinit(cell);
+                Material::projected_log_J(bulk_projection,
+                                          bulk_values,
+                                          data.displacement,
+                                          axisymmetric,
+                                          theta_bar);
+              }
+            else if (s_exact && projected)
               {
                 projection.reinit(fe_values);
                 cell->get_dof_values(data.displacement, local_u);
                 projection.coefficients(local_u, theta_bar);
               }
-            const auto &material = *data.materials.at(cell->material_id());
             for (unsigned int q = 0; q < quadrature.size(); ++q)
               {
                 const auto  &x   = fe_values.quadrature_point(q);
@@ -153,10 +174,6 @@ namespace Signorini
                 const double theta =
                   projected ? projection.value(theta_bar, quadrature.point(q)) :
                               0.;
-                const SymmetricTensor<2, 3> strain =
-                  Bulk::point_strain<dim>(symmetrize(grad_h[q]),
-                                          hoop,
-                                          projected ? &theta : nullptr);
                 // A model with history: that of the nearest bulk point.
                 const unsigned int n_history = material.n_history_values();
                 const SymmetricTensor<2, 3> stress = material.cauchy_stress(
@@ -166,7 +183,7 @@ namespace Signorini
                                                    data.history.nearest_point(
                                                      quadrature.point(q)),
                                                    n_history),
-                  &strain);
+                  projected ? &theta : nullptr);
                 const auto sigma = Material::from_3d<dim>(stress);
                 double     e2 = 0, n2 = 0;
                 for (unsigned int i = 0; i < dim; ++i)

@@ -47,6 +47,10 @@
  * stiffness). A traction stays a dead load per reference area, the body
  * force one per reference volume.
  *
+ * With 'Volumetric strain = projected' a finite-strain cell uses F_bar =
+ * exp((theta_bar - ln J) / 3) F, theta_bar the cell's projection of ln J
+ * (add_projected_finite_strain_cell()).
+ *
  * Models with history (Material::History) see the values committed at the
  * end of the last converged step; update_history() commits new ones from a
  * converged solution.
@@ -171,7 +175,30 @@ namespace Signorini
         std::vector<std::vector<Tensor<2, 3>>> grad_N;
         std::vector<Tensor<2, 3>>              g, g_tau;
         std::vector<SymmetricTensor<2, 3>>     d, c_d;
+        // F, and F_bar with the projection (F-bar; else F); ln J.
+        std::vector<Tensor<2, 3>>              F, F_bar;
+        std::vector<double>                    log_J;
+        bool                                   inverted = false;
+        FullMatrix<double>                     Pi; // projection on points
+        std::vector<std::vector<Tensor<2, 3>>> g_q, g_bar;
+        std::vector<SymmetricTensor<2, 3>>     tau_q;
+        std::vector<SymmetricTensor<4, 3>>     c_q;
       };
+
+      /** The finite-strain part of cell_kinematics(): H, Grad N_i, F, ln J
+       * and F_bar. */
+      void
+      finite_strain_kinematics(CellKinematics &k) const;
+
+      /** Finite strain with 'Volumetric strain = projected' (F-bar):
+       * internal force and tangent of the whole cell of @p k. */
+      void
+      add_projected_finite_strain_cell(
+        const Material::Interface<dim>             &material,
+        const std::vector<ArrayView<const double>> &history,
+        CellKinematics                             &k,
+        Vector<double>                             &f_int,
+        FullMatrix<double>                         *matrix) const;
 
       /** Fills @p k for @p cell and @p solution with the @p kinematics of
        * the cell's material. */

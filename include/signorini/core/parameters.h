@@ -274,6 +274,7 @@ namespace Signorini
     };
     std::vector<PointValue>  point_values;
     double                   point_value_tolerance;
+    double                   point_values_from;         // first time checked
     double                   action_reaction_tolerance; // 0: not checked
     double                   slip_law_tolerance;        // 0: not checked
     std::vector<std::string> contact_force;             // empty: not checked

@@ -11,6 +11,7 @@
 #include <signorini/core/parameters.h>
 #include <signorini/core/plugins.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
@@ -211,19 +212,31 @@ namespace Signorini
       }
 
       /** The Cauchy stress [Pa] at the 3D displacement gradient @p H with
-       * the material's kinematics; small strain: of the strain sym H, or
-       * of @p strain if given (B-bar). */
+       * the material's kinematics. With @p theta_bar (the cell's projected
+       * volumetric strain, 'Volumetric strain = projected') the volumetric
+       * part is replaced: small strain eps_bar = sym H + (theta_bar -
+       * tr H) / 3 I (B-bar), finite strain F_bar = exp((theta_bar - ln J)
+       * / 3) F (F-bar), sigma = tau(F_bar) / det F_bar. */
       SymmetricTensor<2, 3>
       cauchy_stress(const Tensor<2, 3>            &H,
                     const ArrayView<const double> &history,
-                    const SymmetricTensor<2, 3>   *strain = nullptr) const
+                    const double                  *theta_bar = nullptr) const
       {
         SymmetricTensor<2, 3> stress;
+        const double          third = 1. / 3.;
         if (used_kinematics == Kinematics::small_strain)
-          evaluate(strain ? *strain : symmetrize(H), history, stress, nullptr);
+          {
+            SymmetricTensor<2, 3> strain = symmetrize(H);
+            if (theta_bar)
+              strain += (*theta_bar - trace(strain)) * third *
+                        unit_symmetric_tensor<3>();
+            evaluate(strain, history, stress, nullptr);
+          }
         else
           {
-            const Tensor<2, 3> F = unit_symmetric_tensor<3>() + H;
+            Tensor<2, 3> F = unit_symmetric_tensor<3>() + H;
+            if (theta_bar)
+              F *= std::exp((*theta_bar - std::log(determinant(F))) * third);
             evaluate_finite_strain(F, history, stress, nullptr);
             stress /= determinant(F);
           }

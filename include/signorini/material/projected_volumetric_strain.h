@@ -9,6 +9,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <cmath>
 #include <vector>
 
 /**
@@ -28,6 +29,12 @@
  * (value_at(), derivatives_at()); the stresses written and checked take the
  * same strain. Unlike selective reduced integration, the projection keeps
  * the constant-stress patch test of an axisymmetric model.
+ *
+ * At finite strain the volumetric strain is ln J, not linear in u: the
+ * same projection acts on its values at the points of the rule
+ * (coefficients_of(), projection_matrix()), and the bulk assembler forms
+ * F_bar = exp((theta_bar - ln J) / 3) F (an F-bar method whose F_bar is
+ * the gradient of a potential for hyperelastic models; Bulk::Assembler).
  */
 namespace Signorini
 {
@@ -94,6 +101,7 @@ namespace Signorini
       {
         M = 0;
         G = 0;
+        dV.assign(quadrature.size(), 0.);
       }
 
       void
@@ -101,6 +109,7 @@ namespace Signorini
                 const double               dV,
                 const std::vector<double> &theta)
       {
+        this->dV[q] = dV;
         for (unsigned int a = 0; a < n_basis; ++a)
           {
             const double phi_dV = phi(a, q) * dV;
@@ -157,6 +166,38 @@ namespace Signorini
             d[i] += phi(a, q) * M_inv_G(a, i);
       }
 
+      /** Coefficients of the projection of a field given by its
+       * @p values at the points of the rule (after finish_cell()). */
+      void
+      coefficients_of(const std::vector<double> &values,
+                      Vector<double>            &theta) const
+      {
+        Vector<double> moments(n_basis);
+        for (unsigned int a = 0; a < n_basis; ++a)
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            moments[a] += phi(a, q) * values[q] * dV[q];
+        theta.reinit(n_basis);
+        M_inv.vmult(theta, moments);
+      }
+
+      /** The projection as a matrix on the point values: P[f](q) =
+       * sum_q' Pi(q, q') f(q') (after finish_cell()). */
+      void
+      projection_matrix(FullMatrix<double> &Pi) const
+      {
+        const unsigned int nq = quadrature.size();
+        Pi.reinit(nq, nq);
+        for (unsigned int q = 0; q < nq; ++q)
+          for (unsigned int p = 0; p < nq; ++p)
+            {
+              double v = 0;
+              for (unsigned int a = 0; a < n_basis; ++a)
+                for (unsigned int b = 0; b < n_basis; ++b)
+                  v += phi(a, q) * M_inv(a, b) * phi(b, p);
+              Pi(q, p) = v * dV[p];
+            }
+      }
+
     private:
       const FiniteElement<dim> &fe;
       const Quadrature<dim>     quadrature;
@@ -165,7 +206,43 @@ namespace Signorini
       const unsigned int        n_basis;
       FullMatrix<double>        phi; // basis at the points of the rule
       FullMatrix<double>        M, M_inv, G, M_inv_G;
+      std::vector<double>       dV; // the weights of the last cell
     };
+
+    /**
+     * Finite strain: the coefficients @p theta of theta_bar = P[ln J] in the
+     * cell of @p fe_values (reinit on it, with values, gradients,
+     * quadrature points and JxW, on the rule of @p projection: the bulk
+     * rule, as in the assembly) for the displacement @p solution.
+     */
+    template <int dim, typename VectorType>
+    void
+    projected_log_J(ProjectedVolumetricStrain<dim> &projection,
+                    const FEValues<dim>            &fe_values,
+                    const VectorType               &solution,
+                    const bool                      axisymmetric,
+                    Vector<double>                 &theta)
+    {
+      const FEValuesExtractors::Vector displacement(0);
+      const unsigned int               nq = fe_values.n_quadrature_points;
+      std::vector<Tensor<2, dim>>      grad(nq);
+      std::vector<Tensor<1, dim>>      u(nq);
+      std::vector<double>              log_J(nq);
+      fe_values[displacement].get_function_gradients(solution, grad);
+      fe_values[displacement].get_function_values(solution, u);
+      for (unsigned int q = 0; q < nq; ++q)
+        {
+          Tensor<2, 3> F = unit_symmetric_tensor<3>();
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              F[i][j] += grad[q][i][j];
+          if (axisymmetric)
+            F[2][2] += u[q][0] / fe_values.quadrature_point(q)[0];
+          log_J[q] = std::log(determinant(F));
+        }
+      projection.reinit(fe_values);
+      projection.coefficients_of(log_J, theta);
+    }
   } // namespace Material
 } // namespace Signorini
 

@@ -63,6 +63,14 @@ namespace Signorini
         const std::function<double(const Point<dim> &, const unsigned int)>
           &displacement_at);
 
+      /** The 'Point values' checks of the step ending at @p time (with or
+       * without contact; from 'Point values from time' on). */
+      std::vector<CheckResult>
+      point_values(
+        const double time,
+        const std::function<double(const Point<dim> &, const unsigned int)>
+          &displacement_at) const;
+
     private:
       using Records =
         std::vector<typename Contact::ContactProblem<dim>::PointRecord>;

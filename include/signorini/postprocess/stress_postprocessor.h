@@ -19,7 +19,7 @@
  * at the reference position of the point).
  * In 2D the stress normal to the plane is written too (stress_zz, or
  * stress_hoop axisymmetric). The strain is that of the equilibrium
- * (Bulk::point_strain(): with B-bar its volumetric part is theta_bar).
+ * (with the projection its volumetric part is theta_bar: B-bar, F-bar).
  * A model with history evaluates with the committed history of the bulk
  * quadrature point nearest to the output point.
  */
@@ -105,10 +105,16 @@ namespace Signorini
             Material::ProjectedVolumetricStrain<dim> projection(*projected,
                                                                 quadrature,
                                                                 axisymmetric);
-            projection.reinit(fe_values);
             Vector<double> local_u(projected->n_dofs_per_cell()), theta_bar;
-            cell->get_dof_values(*solution, local_u);
-            projection.coefficients(local_u, theta_bar);
+            if (material.kinematics() == Material::Kinematics::finite_strain)
+              Material::projected_log_J(
+                projection, fe_values, *solution, axisymmetric, theta_bar);
+            else
+              {
+                projection.reinit(fe_values);
+                cell->get_dof_values(*solution, local_u);
+                projection.coefficients(local_u, theta_bar);
+              }
             for (unsigned int q = 0; q < computed.size(); ++q)
               volumetric[q] =
                 projection.value(theta_bar,
@@ -129,20 +135,16 @@ namespace Signorini
                                                     r > 0 ? inputs.solution_values[q][0] / r :
                                                             inputs.solution_gradients[q][0][0];
             const unsigned int          n_history = material.n_history_values();
-            const SymmetricTensor<2, 3> strain =
-              Bulk::point_strain<dim>(symmetrize(grad),
-                                      hoop,
-                                      projected ? &volumetric[q] : nullptr);
-            const SymmetricTensor<2, 3> stress = material.cauchy_stress(
+            const SymmetricTensor<2, 3> stress    = material.cauchy_stress(
               Material::to_3d<dim>(grad, hoop),
               n_history == 0 ?
-                ArrayView<const double>() :
-                history.at(cell,
+                   ArrayView<const double>() :
+                   history.at(cell,
                            history.nearest_point(
                              mapping.transform_real_to_unit_cell(
                                cell, inputs.evaluation_points[q])),
                            n_history),
-              &strain);
+              projected ? &volumetric[q] : nullptr);
             unsigned int k = 0;
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = i; j < dim; ++j)
