@@ -19,6 +19,8 @@
 
 #include <signorini/material/j2_plasticity.h>
 
+#include "tensor_helpers.h"
+
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -27,6 +29,7 @@
 #include <vector>
 
 using namespace dealii;
+using namespace test_helpers;
 using Model = Signorini::Material::J2Plasticity<3>;
 
 namespace
@@ -48,28 +51,6 @@ namespace
     model.set_kinematics(kinematics);
     model.parse_parameters(prm);
     return model;
-  }
-
-  Tensor<2, 3>
-  random_tensor(std::mt19937 &rng, const double scale)
-  {
-    std::uniform_real_distribution<double> u(-1, 1);
-    Tensor<2, 3>                           t;
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = 0; j < 3; ++j)
-        t[i][j] = scale * u(rng);
-    return t;
-  }
-
-  Tensor<2, 3>
-  rotation_z(const double angle)
-  {
-    Tensor<2, 3> Q;
-    Q[0][0] = Q[1][1] = std::cos(angle);
-    Q[0][1]           = -std::sin(angle);
-    Q[1][0]           = std::sin(angle);
-    Q[2][2]           = 1;
-    return Q;
   }
 
   // A random committed history: C_p^-1 = exp(2 A), A deviatoric, alpha.
@@ -148,11 +129,6 @@ namespace
     return worst;
   }
 
-  const char *
-  verdict(const bool ok)
-  {
-    return ok ? "PASS" : "FAIL";
-  }
 } // namespace
 
 

@@ -22,6 +22,8 @@
 #include <signorini/material/linear_elastic.h>
 #include <signorini/material/neo_hookean.h>
 
+#include "tensor_helpers.h"
+
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -29,6 +31,7 @@
 #include <random>
 
 using namespace dealii;
+using namespace test_helpers;
 using Model = Signorini::Material::NeoHookean<3>;
 
 namespace
@@ -50,32 +53,6 @@ namespace
     SymmetricTensor<2, 3> tau;
     model.evaluate_finite_strain(F, ArrayView<const double>(), tau, c);
     return tau;
-  }
-
-  Tensor<2, 3>
-  random_tensor(std::mt19937 &rng, const double scale)
-  {
-    std::uniform_real_distribution<double> u(-1, 1);
-    Tensor<2, 3>                           t;
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = 0; j < 3; ++j)
-        t[i][j] = scale * u(rng);
-    return t;
-  }
-
-  // A rotation by @p angle about the unit axis @p a (Rodrigues).
-  Tensor<2, 3>
-  rotation(const Tensor<1, 3> &a, const double angle)
-  {
-    Tensor<2, 3> K;
-    K[0][1] = -a[2];
-    K[0][2] = a[1];
-    K[1][2] = -a[0];
-    K[1][0] = a[2];
-    K[2][0] = -a[1];
-    K[2][1] = a[0];
-    return Tensor<2, 3>(unit_symmetric_tensor<3>()) + std::sin(angle) * K +
-           (1 - std::cos(angle)) * K * K;
   }
 
   // Largest relative FD error of the spatial tangent over random F.
@@ -126,11 +103,6 @@ namespace
     return tau_of(model, F, nullptr) / determinant(F);
   }
 
-  const char *
-  verdict(const bool ok)
-  {
-    return ok ? "PASS" : "FAIL";
-  }
 } // namespace
 
 

@@ -48,9 +48,10 @@ namespace Signorini
                                        0.);
               k.theta_i[i] = trace(k.grad_N[q][i]);
             }
-          k.F[q]     = unit_symmetric_tensor<3>() + k.H[q];
-          k.log_J[q] = std::log(determinant(k.F[q])); // NaN if inverted
-          k.inverted = k.inverted || !(determinant(k.F[q]) > 0);
+          k.F[q]         = unit_symmetric_tensor<3>() + k.H[q];
+          const double J = determinant(k.F[q]);
+          k.log_J[q]     = std::log(J); // NaN if inverted
+          k.inverted     = k.inverted || !(J > 0);
           if (projected)
             k.projection.add_point(q, k.dV[q], k.theta_i);
         }
@@ -64,7 +65,7 @@ namespace Signorini
           double theta_bar = 0;
           for (unsigned int p = 0; p < nq; ++p)
             theta_bar += k.Pi(q, p) * k.log_J[p];
-          k.F_bar[q] = std::exp((theta_bar - k.log_J[q]) / 3.) * k.F[q];
+          k.F_bar[q] = Material::with_volumetric(k.F[q], theta_bar, k.log_J[q]);
         }
     }
 

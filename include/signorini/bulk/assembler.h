@@ -74,10 +74,8 @@ namespace Signorini
                  const double                   strain_33,
                  const double                  *theta_bar = nullptr)
     {
-      SymmetricTensor<2, 3> e = Material::to_3d<dim>(strain, strain_33);
-      if (theta_bar)
-        e += (*theta_bar - trace(e)) / 3. * unit_symmetric_tensor<3>();
-      return e;
+      const SymmetricTensor<2, 3> e = Material::to_3d<dim>(strain, strain_33);
+      return theta_bar ? Material::with_volumetric(e, *theta_bar) : e;
     }
 
     template <int dim>

@@ -95,6 +95,25 @@ namespace Signorini
       return h;
     }
 
+    /** Small strain, B-bar: @p strain with its volumetric part tr(eps)
+     * replaced by the projected @p theta_bar. */
+    inline SymmetricTensor<2, 3>
+    with_volumetric(const SymmetricTensor<2, 3> &strain, const double theta_bar)
+    {
+      return strain +
+             (theta_bar - trace(strain)) / 3. * unit_symmetric_tensor<3>();
+    }
+
+    /** Finite strain, F-bar: F_bar = exp((theta_bar - ln J) / 3) F, whose
+     * ln det is the projected @p theta_bar; @p log_J = ln det F. */
+    inline Tensor<2, 3>
+    with_volumetric(const Tensor<2, 3> &F,
+                    const double        theta_bar,
+                    const double        log_J)
+    {
+      return std::exp((theta_bar - log_J) / 3.) * F;
+    }
+
     /** The kinematics of a material ('Material k/Kinematics'). */
     enum class Kinematics
     {
@@ -223,20 +242,19 @@ namespace Signorini
                     const double                  *theta_bar = nullptr) const
       {
         SymmetricTensor<2, 3> stress;
-        const double          third = 1. / 3.;
         if (used_kinematics == Kinematics::small_strain)
           {
-            SymmetricTensor<2, 3> strain = symmetrize(H);
-            if (theta_bar)
-              strain += (*theta_bar - trace(strain)) * third *
-                        unit_symmetric_tensor<3>();
-            evaluate(strain, history, stress, nullptr);
+            const SymmetricTensor<2, 3> strain = symmetrize(H);
+            evaluate(theta_bar ? with_volumetric(strain, *theta_bar) : strain,
+                     history,
+                     stress,
+                     nullptr);
           }
         else
           {
             Tensor<2, 3> F = unit_symmetric_tensor<3>() + H;
             if (theta_bar)
-              F *= std::exp((*theta_bar - std::log(determinant(F))) * third);
+              F = with_volumetric(F, *theta_bar, std::log(determinant(F)));
             evaluate_finite_strain(F, history, stress, nullptr);
             stress /= determinant(F);
           }

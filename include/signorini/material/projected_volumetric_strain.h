@@ -9,6 +9,8 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <signorini/material/interface.h>
+
 #include <cmath>
 #include <vector>
 
@@ -231,15 +233,11 @@ namespace Signorini
       fe_values[displacement].get_function_gradients(solution, grad);
       fe_values[displacement].get_function_values(solution, u);
       for (unsigned int q = 0; q < nq; ++q)
-        {
-          Tensor<2, 3> F = unit_symmetric_tensor<3>();
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              F[i][j] += grad[q][i][j];
-          if (axisymmetric)
-            F[2][2] += u[q][0] / fe_values.quadrature_point(q)[0];
-          log_J[q] = std::log(determinant(F));
-        }
+        log_J[q] = std::log(determinant(
+          unit_symmetric_tensor<3>() +
+          to_3d<dim>(grad[q],
+                     axisymmetric ? u[q][0] / fe_values.quadrature_point(q)[0] :
+                                    0.)));
       projection.reinit(fe_values);
       projection.coefficients_of(log_J, theta);
     }
