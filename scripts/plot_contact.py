@@ -12,6 +12,8 @@ import math
 import sys
 from pathlib import Path
 
+from vtu_reader import read_series
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -264,8 +266,69 @@ def plot_locking(runs, figures):
     print("wrote", out)
 
 
+def plot_contact_surface(runs, figures):
+    """The 3D Hertz contact patch as the contact surface output gives it
+    (contact_surface_NNNN.vtu of the last step, read back with
+    vtu_reader.py), seen from below: the nodal contact pressure and the
+    nodal status on the slave faces, with Hertz's radius a."""
+    import matplotlib.tri as mtri
+    from matplotlib.collections import PolyCollection
+
+    directory = runs / "hertz_3d"
+    if not (directory / "contact_surface.pvd").exists():
+        return
+    pieces, _ = read_series(directory, "contact_surface")
+    a = CASES["hertz_3d"][2] * 1e3
+    window = 1.6 * a
+    xs, zs, ps, status, triangles, outlines = [], [], [], [], [], []
+    for piece in pieces:
+        base = len(xs)
+        xs += [x[0] * 1e3 for x in piece["points"]]
+        zs += [x[2] * 1e3 for x in piece["points"]]
+        ps += [v / 1e6 for v in piece["point_data"]["contact_pressure"]]
+        status += piece["point_data"]["status"]
+        for cell in piece["cells"]:
+            c = [base + i for i in cell]
+            if min(math.hypot(xs[i], zs[i]) for i in c) > 1.5 * window:
+                continue
+            triangles += [[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
+            outlines.append([(xs[i], zs[i]) for i in c])
+    mesh = mtri.Triangulation(xs, zs, triangles)
+    phi = [0.5 * math.pi * i / 100 for i in range(101)]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.4))
+    image = axes[0].tripcolor(mesh, ps, shading="gouraud", cmap="viridis")
+    fig.colorbar(image, ax=axes[0], label="contact_pressure [MPa]")
+    closed = [i for i in range(len(xs)) if status[i] > 0]
+    opened = [i for i in range(len(xs)) if status[i] == 0]
+    axes[1].plot([xs[i] for i in closed], [zs[i] for i in closed], "o",
+                 color="tab:red", ms=5, label="closed (status > 0)")
+    axes[1].plot([xs[i] for i in opened], [zs[i] for i in opened], "o",
+                 mfc="white", color="tab:gray", ms=5, label="open (status 0)")
+    for ax, title in zip(axes, ("nodal contact pressure", "nodal status")):
+        ax.add_collection(PolyCollection(outlines, facecolors="none",
+                                         edgecolors="k", linewidths=0.3))
+        ax.plot([a * math.cos(t) for t in phi], [a * math.sin(t) for t in phi],
+                "--", color="white" if ax is axes[0] else "k", lw=1.5,
+                label="Hertz: r = a")
+        ax.set_xlim(0, window)
+        ax.set_ylim(0, window)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("z [mm]")
+        ax.set_title(title, fontsize=10)
+        ax.legend(loc="upper right", fontsize=8)
+    fig.suptitle("Hertz 3D (prm/hertz_3d.prm), the contact patch seen from "
+                 "below: contact_surface_NNNN.vtu drawn with matplotlib", fontsize=10)
+    fig.tight_layout()
+    out = figures / "hertz_3d_contact_surface.png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print("wrote", out)
+
+
 if __name__ == "__main__":
     main()
+    plot_contact_surface(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_newton_history(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_hysteresis(Path(sys.argv[1]), Path(sys.argv[2]))
     plot_mindlin_traction(Path(sys.argv[1]), Path(sys.argv[2]))

@@ -280,7 +280,10 @@ namespace Signorini
           const double mu =
             parameters.contact.pairs[surfaces.slave_faces()[point.face].pair]
               .friction;
-          std::vector<double> values = {-point.lambda,
+          // The pressure that carries force (f . n: zero at unpaired
+          // points), so that the nodal pressures integrate to the contact
+          // force.
+          std::vector<double> values = {point.force * point.normal,
                                         point.paired ? point.gap : 0.,
                                         static_cast<double>(point.status)};
           for (unsigned int k = 0; k < dim - 1; ++k)
@@ -289,10 +292,17 @@ namespace Signorini
             values.push_back(point.slip[k]);
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
             {
+              // Weighted with psi: where the multipliers use the dual basis
+              // (biorthogonal to psi) the pressure of node l is its
+              // multiplier lambda_l and an open node carries none; with
+              // psi, L2-weighted averages.
               const unsigned int i = face.node_local[l];
               const double       w = point.weight * point.psi[l];
               const auto         d =
                 scalar_cell_dofs[fe.system_to_component_index(i).second];
+              // A pair with statuses per node: the node's own status.
+              if (node_statuses.by_node(face.pair))
+                values[2] = node_status(face.lambda_dofs[l]);
               for (unsigned int v = 0; v < values.size(); ++v)
                 add_entry(sums[v], d, w * values[v]);
               add_entry(sums.back(), d, w);
@@ -313,6 +323,22 @@ namespace Signorini
           result.emplace_back(names[v], ghosted);
         }
       return result;
+    }
+
+
+    template <int dim>
+    double
+    Output<dim>::node_status(const types::global_dof_index lambda_dof) const
+    {
+      const auto &normal = node_statuses.normal_statuses();
+      const auto  it     = normal.find(lambda_dof);
+      if (it == normal.end() || !it->second)
+        return static_cast<double>(PointStatus::free);
+      const auto *friction = node_statuses.find_friction(lambda_dof);
+      return static_cast<double>(friction != nullptr && friction->active &&
+                                     friction->stick ?
+                                   PointStatus::stick :
+                                   PointStatus::slip);
     }
 
 

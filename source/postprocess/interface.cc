@@ -11,7 +11,7 @@ namespace Signorini
     {
       const auto &registry = Registry<2>::instance();
       prm.declare_entry("Postprocessors",
-                        "visualization, reference checks",
+                        "visualization, contact surface, reference checks",
                         Patterns::MultipleSelection(registry.selection()),
                         "What runs after every written load step, in this "
                         "order (names separated by ','; empty: none): " +

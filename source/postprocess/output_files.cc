@@ -203,8 +203,10 @@ namespace Signorini
       // Exactly the names this program writes (and their temporary names
       // left by a killed run): a user's own files in the directory stay.
       static const std::regex ours(
-        "(solution_[0-9]+\\.[0-9]+\\.vtu|solution_[0-9]+\\.pvtu|"
-        "solution\\.pvd|contact_[0-9]+\\.csv|statistics\\.csv|"
+        "((solution|contact_surface)_[0-9]+\\.[0-9]+\\.vtu|"
+        "(solution|contact_surface)_[0-9]+\\.pvtu|"
+        "(solution|contact_surface)\\.pvd|contact_[0-9]+\\.csv|statistics\\."
+        "csv|"
         "newton_history\\.csv)(\\.tmp)?|parameters(\\.echo)?\\.prm\\.tmp");
       namespace fs                     = std::filesystem;
       unsigned int           n_removed = 0;

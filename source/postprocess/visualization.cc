@@ -1,7 +1,9 @@
 // The postprocessor 'visualization': the VTU files of each written load
 // step (one piece per rank, a PVTU record, and solution.pvd listing the
 // steps) with the displacement, the stress, material and rank of each
-// cell and, with contact, the contact fields at the slave nodes.
+// cell and, with contact, the contact fields at the slave nodes (on the
+// volume mesh; the postprocessor 'contact surface' writes them on the
+// slave surface itself).
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
@@ -12,10 +14,11 @@
 
 #include <signorini/contact/contact_problem.h>
 #include <signorini/postprocess/interface.h>
-#include <signorini/postprocess/output_files.h>
 #include <signorini/postprocess/stress_postprocessor.h>
+#include <signorini/postprocess/vtu_series.h>
 
 #include <algorithm>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,7 +41,8 @@ namespace Signorini
       parse_parameters(const Parameters &parameters,
                        ParameterHandler &) override
       {
-        directory = parameters.output.directory + "/";
+        series =
+          std::make_unique<VtuSeries>(parameters.output.directory, "solution");
       }
 
       std::vector<CheckResult>
@@ -56,11 +60,7 @@ namespace Signorini
                        DataOut<dim>               &data_out,
                        std::vector<Vector<float>> &fields) const;
 
-      void
-      write(const DataOut<dim> &data_out, const StepData<dim> &data);
-
-      std::string                                 directory;
-      std::vector<std::pair<double, std::string>> records; // (time, pvtu)
+      std::unique_ptr<VtuSeries> series;
     };
 
 
@@ -104,7 +104,7 @@ namespace Signorini
             data_out.add_data_vector(scalar_dofs, field, name);
         }
       data_out.build_patches(data.mapping, fe.degree);
-      write(data_out, data);
+      series->write(data_out, data.step, data.time, data.mpi_communicator);
       return {};
     }
 
@@ -174,54 +174,6 @@ namespace Signorini
     }
 
 
-    // The names of DataOut::write_vtu_with_pvtu_record(), which writes in
-    // place and leaves a truncated file behind a kill or a full disk: here
-    // every file goes through a temporary name, each rank's piece first,
-    // then (rank 0, once every piece is in place) the step's PVTU record,
-    // then the PVD list, which so names complete steps only.
-    template <int dim>
-    void
-    Visualization<dim>::write(const DataOut<dim>  &data_out,
-                              const StepData<dim> &data)
-    {
-      const MPI_Comm     comm    = data.mpi_communicator;
-      const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
-      const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-      const unsigned int digits =
-        Utilities::needed_digits(std::max(0, static_cast<int>(n_ranks) - 1));
-      const std::string stem =
-        "solution_" + Utilities::int_to_string(data.step, 4);
-      const auto piece = [&](const unsigned int r) {
-        return stem + "." + Utilities::int_to_string(r, digits) + ".vtu";
-      };
-      check_written(write_atomically(directory + piece(rank),
-                                     [&](std::ostream &out) {
-                                       data_out.write_vtu(out);
-                                     }),
-                    data.parameters.output.directory,
-                    comm);
-      std::string failure;
-      if (rank == 0)
-        {
-          std::vector<std::string> pieces;
-          for (unsigned int r = 0; r < n_ranks; ++r)
-            pieces.push_back(piece(r));
-          failure = write_atomically(directory + stem + ".pvtu",
-                                     [&](std::ostream &out) {
-                                       data_out.write_pvtu_record(out, pieces);
-                                     });
-          if (failure.empty())
-            {
-              records.emplace_back(data.time, stem + ".pvtu");
-              failure =
-                write_atomically(directory + "solution.pvd",
-                                 [&](std::ostream &out) {
-                                   DataOutBase::write_pvd_record(out, records);
-                                 });
-            }
-        }
-      check_written(failure, data.parameters.output.directory, comm);
-    }
   } // namespace Postprocess
 } // namespace Signorini
 

@@ -6,10 +6,11 @@ user_guide.md, "How output is kept"):
  - statistics.csv, newton_history.csv and every contact_NNNN.csv: a header
    and rows (maybe none) with the same number of fields, a complete last
    line, numbers where numbers belong;
- - every solution_NNNN.R.vtu and .pvtu: complete XML (a VTKFile element, ends with
-   </VTKFile>);
- - solution.pvd: complete XML listing only .pvtu files that exist and are
-   complete, and each of those names only pieces that exist;
+ - every solution_NNNN.R.vtu and .pvtu (and contact_surface_NNNN.R.vtu and
+   .pvtu): complete XML (a VTKFile element, ends with </VTKFile>);
+ - solution.pvd (and contact_surface.pvd): complete XML listing only .pvtu
+   files that exist and are complete, and each of those names only pieces
+   that exist;
  - the steps agree: a step in statistics.csv has its contact CSV and its
    PVTU; the PVD lists steps 1..M, M at most one step ahead of statistics.
 Temporary files (*.tmp, left by a kill) are not results and are skipped;
@@ -43,7 +44,7 @@ def read_text(name):
         return ""
 
 
-def table(name, text_columns=()):
+def table(name, text_columns=(), may_be_empty=()):
     """The rows of a CSV file (header first) if it is complete, else None."""
     text = read_text(name)
     if not text.endswith("\n"):
@@ -63,6 +64,8 @@ def table(name, text_columns=()):
                 if not value:
                     fails.append("%s line %d: empty %s" % (name, k, column))
                     return None
+                continue
+            if column in may_be_empty and value == "":
                 continue
             try:
                 float(value)
@@ -107,9 +110,10 @@ if "newton_history.csv" in names:
         history_steps = sorted(set(int(r[0]) for r in rows[1:]))
 for name in names:
     if re.fullmatch(r"contact_[0-9]+\.csv", name):
-        if table(name, text_columns=("status",)) is not None:
+        # An empty gap: the point found no master face (user_guide.md).
+        if table(name, text_columns=("status",), may_be_empty=("gap",)) is not None:
             checked["csv"] += 1
-    elif re.fullmatch(r"solution_[0-9]+(\.[0-9]+\.vtu|\.pvtu)", name):
+    elif re.fullmatch(r"(solution|contact_surface)_[0-9]+(\.[0-9]+\.vtu|\.pvtu)", name):
         root = vtk_xml(name)
         if root is not None:
             checked["vtu" if name.endswith(".vtu") else "pvtu"] += 1
@@ -118,30 +122,39 @@ for name in names:
                 if not regular(piece.get("Source", "")):
                     fails.append("%s: piece %s missing" % (name, piece.get("Source")))
 
-pvd_steps = []
-if "solution.pvd" in names:
-    root = vtk_xml("solution.pvd")
+def pvd_steps_of(stem):
+    """The steps listed in STEM.pvd (all of whose files must exist)."""
+    steps = []
+    root = vtk_xml(stem + ".pvd")
     if root is not None:
         for dataset in root.iter("DataSet"):
             listed = dataset.get("file", "")
-            match = re.fullmatch(r"solution_([0-9]+)\.pvtu", listed)
+            match = re.fullmatch(stem + r"_([0-9]+)\.pvtu", listed)
             if not match or not regular(listed):
-                fails.append("solution.pvd lists %r: missing" % listed)
+                fails.append("%s.pvd lists %r: missing" % (stem, listed))
                 continue
-            pvd_steps.append(int(match.group(1)))
-        if pvd_steps != list(range(1, len(pvd_steps) + 1)):
-            fails.append("solution.pvd: steps %s, expected 1, 2, ..." % pvd_steps[:10])
+            steps.append(int(match.group(1)))
+        if steps != list(range(1, len(steps) + 1)):
+            fails.append("%s.pvd: steps %s, expected 1, 2, ..." % (stem, steps[:10]))
+    return steps
+
+
+series = [stem for stem in ("solution", "contact_surface") if stem + ".pvd" in names]
+listed = {stem: pvd_steps_of(stem) for stem in series}
+pvd_steps = listed.get("solution", [])
 
 # statistics.csv is written last in a step: its steps have all their files.
 last = len(stat_steps)
-kinds = [pattern for pattern in ("contact_%04d.csv", "solution_%04d.pvtu")
+kinds = [pattern for pattern in ("contact_%04d.csv", "solution_%04d.pvtu",
+                                 "contact_surface_%04d.pvtu")
          if any(re.fullmatch(pattern.replace("%04d", "[0-9]+").replace(".", r"\."), n) for n in names)]
 for step in stat_steps:
     for name in (pattern % step for pattern in kinds):
         if name not in names:
             fails.append("step %d is in statistics.csv but %s is missing" % (step, name))
-if pvd_steps and not last <= len(pvd_steps) <= last + 1:
-    fails.append("solution.pvd lists %d steps, statistics.csv %d" % (len(pvd_steps), last))
+for stem, steps in listed.items():
+    if steps and not last <= len(steps) <= last + 1:
+        fails.append("%s.pvd lists %d steps, statistics.csv %d" % (stem, len(steps), last))
 if history_steps and history_steps[-1] > last + 1:
     fails.append("newton_history.csv has step %d, statistics.csv %d" % (history_steps[-1], last))
 
@@ -149,12 +162,21 @@ if expected_steps is not None:
     if temporaries:
         fails.append("temporary files left: %s" % temporaries)
     ranks = sorted(set(re.findall(r"solution_0001\.([0-9]+)\.vtu", " ".join(names))))
-    want = {"statistics.csv", "newton_history.csv", "solution.pvd", "parameters.prm"}
+    want = {"statistics.csv", "newton_history.csv", "parameters.prm"}
+    # Every scene writes the solution series; one with contact (contact
+    # CSVs) also the contact surface series.
+    expected_series = ["solution"]
+    if any(re.fullmatch(r"contact_[0-9]+\.csv", n) for n in names):
+        expected_series.append("contact_surface")
+    want |= {stem + ".pvd" for stem in expected_series}
     for step in range(1, expected_steps + 1):
-        want |= {"contact_%04d.csv" % step, "solution_%04d.pvtu" % step}
-        want |= {"solution_%04d.%s.vtu" % (step, r) for r in ranks}
+        want |= {"contact_%04d.csv" % step}
+        for stem in expected_series:
+            want |= {"%s_%04d.pvtu" % (stem, step)}
+            want |= {"%s_%04d.%s.vtu" % (stem, step, r) for r in ranks}
     ours = {n for n in names if re.fullmatch(
-        r"solution_[0-9]+\.[0-9]+\.vtu|solution_[0-9]+\.pvtu|solution\.pvd|"
+        r"(solution|contact_surface)_[0-9]+\.[0-9]+\.vtu|"
+        r"(solution|contact_surface)_[0-9]+\.pvtu|(solution|contact_surface)\.pvd|"
         r"contact_[0-9]+\.csv|statistics\.csv|newton_history\.csv|parameters\.prm", n)}
     if ours != want:
         fails.append("files of a %d-step run: missing %s, extra %s"

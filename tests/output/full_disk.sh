@@ -44,6 +44,8 @@ case_ newton_history.csv       1 "'results/newton_history.csv'"
 case_ solution_0002.1.vtu.tmp  2 "'results/solution_0002.1.vtu' (as 'results/solution_0002.1.vtu.tmp')"
 case_ solution_0002.pvtu.tmp   1 "'results/solution_0002.pvtu' (as 'results/solution_0002.pvtu.tmp')"
 case_ solution.pvd.tmp         1 "'results/solution.pvd' (as 'results/solution.pvd.tmp')"
+case_ contact_surface_0002.1.vtu.tmp 2 "'results/contact_surface_0002.1.vtu' (as 'results/contact_surface_0002.1.vtu.tmp')"
+case_ contact_surface.pvd.tmp 1 "'results/contact_surface.pvd' (as 'results/contact_surface.pvd.tmp')"
 case_ contact_0003.csv.tmp     1 "'results/contact_0003.csv' (as 'results/contact_0003.csv.tmp')"
 case_ parameters.prm.tmp       1 "'results/parameters.prm' (as 'results/parameters.prm.tmp')"
 # The rank that failed is named (rank 1's own VTU piece).

@@ -32,7 +32,7 @@ wait "$pid" 2>/dev/null
 # Files of this program's patterns the next run must remove (regular files,
 # temporary names included).
 stale="$(find results -maxdepth 1 -type f -regextype posix-extended -regex \
-  '.*/((solution_[0-9]+\.[0-9]+\.vtu|solution_[0-9]+\.pvtu|solution\.pvd|contact_[0-9]+\.csv|statistics\.csv|newton_history\.csv)(\.tmp)?|parameters\.prm\.tmp)' | wc -l)"
+  '.*/(((solution|contact_surface)_[0-9]+\.[0-9]+\.vtu|(solution|contact_surface)_[0-9]+\.pvtu|(solution|contact_surface)\.pvd|contact_[0-9]+\.csv|statistics\.csv|newton_history\.csv)(\.tmp)?|parameters\.prm\.tmp)' | wc -l)"
 { cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = 2\nend\n'; } > two_steps.prm
 (run two_steps.prm) > rerun.txt 2>&1; rc=$?
 if [ $rc -ne 0 ]; then echo "FAIL: the 2-step run exited with code $rc"; tail -5 rerun.txt; exit 1; fi

@@ -13,8 +13,9 @@ cd "$dir"
 steps() { { cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = %s\nend\n' "$1"; } > "run$1.prm"; }
 steps 4; steps 2
 "$exe" run4.prm > out4.txt 2>&1 || { echo "FAIL: the 4-step run failed"; tail -3 out4.txt; exit 1; }
-# 4 x (contact CSV, VTU, PVTU) + solution.pvd, statistics.csv, newton_history.csv
-removed=15
+# 4 x (contact CSV, VTU, PVTU, surface VTU, surface PVTU) + solution.pvd,
+# contact_surface.pvd, statistics.csv, newton_history.csv
+removed=24
 keep="notes.txt solution_final.vtu contact_summary.csv statistics.csv.bak my_solution_0001.pvtu contact_0009.csv"
 for f in $keep; do [ "$f" = contact_0009.csv ] || echo "user file" > "results/$f"; done
 ln -s notes.txt results/contact_0009.csv

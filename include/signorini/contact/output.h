@@ -96,9 +96,11 @@ namespace Signorini
 
       /**
        * Nodal fields on the displacement mesh for the VTU (zero away from
-       * the slave surface): p, gap, status (0 free, 1 stick, 2 slip),
-       * tangential traction and slip (dim-1 each), as weighted averages of
-       * the point values. Returns (name, vector on @p scalar_dofs) pairs.
+       * the slave surface): p, gap, status (0 free, 1 stick, 2 slip or
+       * closed without friction), tangential traction and slip (dim-1
+       * each), as weighted averages of the point values; the status of a
+       * pair with statuses per node is the node's own. Returns (name,
+       * vector on @p scalar_dofs) pairs.
        */
       std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>>
       nodal_fields(const DoFHandler<dim> &scalar_dofs) const;
@@ -110,6 +112,11 @@ namespace Signorini
       contact_zone_cells() const;
 
     private:
+      /** The status of a multiplier node of a pair with statuses per node,
+       * as a PointStatus value. */
+      double
+      node_status(const types::global_dof_index lambda_dof) const;
+
       const Parameters        &parameters;
       const FESystem<dim>     &fe;
       const DoFHandler<dim>   &dof_handler;

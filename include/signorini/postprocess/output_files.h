@@ -133,7 +133,8 @@ namespace Signorini
     /**
      * Removes the files of an earlier run from @p directory: regular files
      * named like this program's results (solution_NNNN.R.vtu,
-     * solution_NNNN.pvtu, solution.pvd, contact_NNNN.csv, statistics.csv,
+     * solution_NNNN.pvtu, solution.pvd, the same of contact_surface,
+     * contact_NNNN.csv, statistics.csv,
      * newton_history.csv, and their temporary names), nothing else.
      * Returns how many were removed; @p failure says which could not be.
      */
