@@ -77,8 +77,9 @@ namespace Signorini
                                 const double                   delta,
                                 TrilinosWrappers::MPI::Vector &r) {
         TrilinosWrappers::MPI::Vector perturbed = base;
+        // (Set, not added: the compress() below is an insert.)
         if (owned.is_element(j))
-          perturbed[j] += delta;
+          perturbed[j] = base[j] + delta;
         perturbed.compress(VectorOperation::insert);
         state = perturbed;
         r     = 0;

@@ -379,6 +379,10 @@ namespace Signorini
         owned.add_range(friction_offset,
                         friction_offset + n_owned_friction * (dim - 1));
       owned.compress();
+      owned_system = IndexSet(n_system());
+      owned_system.add_indices(owned_u);
+      owned_system.add_indices(owned);
+      owned_system.compress();
       return counts;
     }
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 
 namespace Signorini
 {
@@ -222,12 +223,12 @@ namespace Signorini
     std::array<double, 4> products{{new_old, old_old, 0., 0.}};
     if (boundary_conditions.has_loads())
       {
-        const auto [f_new, f_old] =
-          load_increments(time,
-                          step_start_time,
-                          step_start_time - last_step_size);
-        products[2] = f_new * f_old;
-        products[3] = f_old * f_old;
+        const auto local =
+          load_increment_products(time,
+                                  step_start_time,
+                                  step_start_time - last_step_size);
+        products[2] = local[0];
+        products[3] = local[1];
       }
     Utilities::MPI::sum(ArrayView<const double>(products),
                         system.mpi_communicator,
@@ -245,14 +246,16 @@ namespace Signorini
   }
 
 
-  // The load increments F_ext(@p time) - F_ext(@p start) and F_ext(@p start)
-  // - F_ext(@p previous) (owned parts; the loads do not depend on the
-  // displacement), with the load functions left at @p time.
+  // The load increments f_new = F_ext(@p time) - F_ext(@p start) and f_old
+  // = F_ext(@p start) - F_ext(@p previous) (the loads do not depend on the
+  // displacement): this rank's parts of f_new . f_old and f_old . f_old
+  // (owned entries; zero on a rank that owns none), with the load
+  // functions left at @p time.
   template <int dim>
-  std::pair<Vector<double>, Vector<double>>
-  LoadStep<dim>::load_increments(const double time,
-                                 const double start,
-                                 const double previous)
+  std::array<double, 2>
+  LoadStep<dim>::load_increment_products(const double time,
+                                         const double start,
+                                         const double previous)
   {
     TimerOutput::Scope            t(timer, "predictor loads");
     std::array<Vector<double>, 3> f;
@@ -272,9 +275,19 @@ namespace Signorini
           f[k][n++] = force[i];
       }
     boundary_conditions.set_load_time(time);
+    if (f[0].size() == 0)
+      return {{0., 0.}};
     f[0] -= f[1];
     f[1] -= f[2];
-    return {f[0], f[1]};
+    // A load that is not finite (a load expression of the user) gives no
+    // scale: NaN, which the caller's sum passes to every rank and its
+    // test for a positive norm skips. Newton reports the load.
+    for (const auto &v : f)
+      for (const double x : v)
+        if (!std::isfinite(x))
+          return {{std::numeric_limits<double>::quiet_NaN(),
+                   std::numeric_limits<double>::quiet_NaN()}};
+    return {{f[0] * f[1], f[1] * f[1]}};
   }
 
 

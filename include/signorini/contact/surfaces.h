@@ -135,22 +135,27 @@ namespace Signorini
         return ghost_multipliers;
       }
 
-      /** A vector over the multipliers alone that takes additions to the
+      /** A vector of the system's layout that takes additions to the
        * multipliers of this rank's slave faces (compress(add) sums them
-       * on their owners). */
+       * on their owners); only its multiplier entries are used. (Over the
+       * multipliers alone its indices would not start at 0, which
+       * deal.II's Trilinos vectors require: size() is the span of the
+       * indices.) */
       TrilinosWrappers::MPI::Vector
       writable_multipliers() const
       {
         TrilinosWrappers::MPI::Vector v;
-        v.reinit(owned, ghost_multipliers, comm, true);
+        v.reinit(owned_system, ghost_multipliers, comm, true);
         return v;
       }
-      /** A ghosted vector over the multipliers alone (reads the
-       * multipliers of this rank's slave faces). */
+      /** A ghosted vector of the system's layout that reads the
+       * multipliers of this rank's slave faces (see above). */
       TrilinosWrappers::MPI::Vector
       ghosted_multipliers() const
       {
-        return TrilinosWrappers::MPI::Vector(owned, ghost_multipliers, comm);
+        return TrilinosWrappers::MPI::Vector(owned_system,
+                                             ghost_multipliers,
+                                             comm);
       }
 
       /** This rank's slave faces (locally owned cells). */
@@ -285,7 +290,9 @@ namespace Signorini
       PairScales              scales;
       types::global_dof_index n_displacements = 0, n_lambdas = 0,
                               n_frictions = 0;
-      IndexSet owned, extra, ghost_multipliers;
+      // owned: this rank's multipliers; owned_system: its displacements
+      // and multipliers.
+      IndexSet owned, owned_system, extra, ghost_multipliers;
       std::map<types::global_dof_index, NodeInfo> node_info; // key: x-dof
       std::vector<SlaveFace<dim>>                 slaves;
       std::vector<MasterFace<dim>>                masters;

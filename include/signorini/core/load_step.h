@@ -10,6 +10,7 @@
 #include <signorini/solver/load_stepper.h>
 #include <signorini/solver/newton_solver.h>
 
+#include <array>
 #include <string>
 #include <utility>
 
@@ -103,11 +104,12 @@ namespace Signorini
      * predictor of the step from @p step_start_time to @p time. */
     double
     predictor_factor(const double time, const double step_start_time);
-    /** The external force increments of this step and of the last. */
-    std::pair<Vector<double>, Vector<double>>
-    load_increments(const double time,
-                    const double start,
-                    const double previous);
+    /** With the external force increments f_new of this step and f_old
+     * of the last: this rank's parts of f_new . f_old and f_old . f_old. */
+    std::array<double, 2>
+    load_increment_products(const double time,
+                            const double start,
+                            const double previous);
     /** A pairing of the geometric loop and its sparsity pattern. */
     void
     pair(const double time, const double step_start_time);
