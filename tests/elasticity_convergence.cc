@@ -29,11 +29,11 @@ namespace
            "  set Upper corner = 1, 1\n end\nend\n"
            "subsection Materials\n subsection Material 1\n"
            "  set Young's modulus = 2.5\n  set Poisson's ratio = 0.25\n"
-           " end\nend\n"
-           "subsection Boundary conditions\n"
-           " set Body force = " +
+           "  set Body force = " +
            f + "; " + f +
-           "\n set Function constants = pi: 3.141592653589793\n"
+           "\n end\nend\n"
+           "subsection Boundary conditions\n"
+           " set Function constants = pi: 3.141592653589793\n"
            " subsection Dirichlet 1\n  set Boundary id = 10, 11, 12, 13\n"
            "  set Components = x, y\n  set Values = 0; 0\n end\nend\n"
            "subsection Reference solution\n"

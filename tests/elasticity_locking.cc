@@ -42,10 +42,10 @@ namespace
             "subsection Materials\n subsection Material 1\n"
             "  set Young's modulus = "
          << 2 * (1 + nu) << "\n  set Poisson's ratio = " << nu
-         << "\n end\nend\n"
-            "subsection Boundary conditions\n"
-            " set Body force = -2*pi^3*sin(2*pi*y)*(2*cos(2*pi*x)-1); "
+         << "\n  set Body force = -2*pi^3*sin(2*pi*y)*(2*cos(2*pi*x)-1); "
             "2*pi^3*sin(2*pi*x)*(2*cos(2*pi*y)-1)\n"
+            " end\nend\n"
+            "subsection Boundary conditions\n"
             " set Function constants = pi: 3.141592653589793\n"
             " subsection Dirichlet 1\n  set Boundary id = 10, 11, 12, 13\n"
             "  set Components = x, y\n  set Values = 0; 0\n end\nend\n"

@@ -93,10 +93,15 @@ namespace
     neumann.back()->initialize(FunctionParser<dim>::default_variable_names(),
                                "300*(1+y)",
                                {});
-    FunctionParser<dim> body_force(dim);
-    body_force.initialize(FunctionParser<dim>::default_variable_names(),
-                          dim == 2 ? "0; 0" : "0; 0; 0",
-                          {});
+    Signorini::Bulk::BodyForces<dim> body_force;
+    for (const auto &[id, material] : materials)
+      {
+        body_force[id] = std::make_unique<FunctionParser<dim>>(dim);
+        body_force[id]->initialize(
+          FunctionParser<dim>::default_variable_names(),
+          dim == 2 ? "0; 0" : "0; 0; 0",
+          {});
+      }
     Signorini::Bulk::Assembler<dim> assembler(
       parameters, mapping, fe, materials, neumann, body_force);
     std::vector<std::unique_ptr<FunctionParser<dim>>> no_pressure;

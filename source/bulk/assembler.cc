@@ -19,13 +19,13 @@ namespace Signorini
       const FESystem<dim>                                     &fe,
       const Materials<dim>                                    &materials,
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
-      const FunctionParser<dim>                               &body_force)
+      const BodyForces<dim>                                   &body_forces)
         : parameters(parameters)
         , mapping(mapping)
         , fe(fe)
         , materials(materials)
         , neumann(neumann)
-        , body_force(body_force)
+        , body_forces(body_forces)
         , cell_quadrature(fe.degree + 1)
     {
     }
@@ -168,9 +168,11 @@ namespace Signorini
 
     template <int dim>
     void
-    Assembler<dim>::add_body_force(const CellKinematics &k,
-                                   Vector<double>       &cell_fext) const
+    Assembler<dim>::add_body_force(const types::material_id material_id,
+                                   const CellKinematics    &k,
+                                   Vector<double>          &cell_fext) const
     {
+      const auto    &body_force = *body_forces.at(material_id);
       Vector<double> force(dim);
       for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
         {
@@ -241,7 +243,7 @@ namespace Signorini
             const auto         cell_history = history.on_cell(cell, n_history);
             const auto         kinematics   = material.kinematics();
             cell_kinematics(cell, solution, kinematics, k);
-            add_body_force(k, cell_fext);
+            add_body_force(cell->material_id(), k, cell_fext);
 
             // Stress and tangent of the cell's model at every point.
             FullMatrix<double> *local_matrix = matrix ? &cell_matrix : nullptr;
@@ -304,7 +306,7 @@ namespace Signorini
                                 solution,
                                 materials.at(cell->material_id())->kinematics(),
                                 k);
-                add_body_force(k, cell_fext);
+                add_body_force(cell->material_id(), k, cell_fext);
               }
             add_neumann(cell, solution, *fe_face_values, cell_fext, nullptr);
             cell->get_dof_indices(dofs);

@@ -70,7 +70,8 @@ namespace Signorini
 
     template <int dim>
     BoundaryConditions<dim>::BoundaryConditions(
-      const BoundaryConditionParameters &parameters)
+      const BoundaryConditionParameters     &parameters,
+      const std::vector<MaterialParameters> &materials)
         : parameters(parameters)
     {
       const auto where = [](const std::string &condition) {
@@ -87,11 +88,17 @@ namespace Signorini
           parse_function<dim>(parameters.neumann[k].values,
                               parameters.constants,
                               where("Neumann " + std::to_string(k + 1))));
-      body_force_function = parse_function<dim>(
-        std::vector<std::string>(parameters.body_force.begin(),
-                                 parameters.body_force.begin() + dim),
-        parameters.constants,
-        "subsection 'Boundary conditions', parameter 'Body force'");
+      for (unsigned int k = 0; k < materials.size(); ++k)
+        {
+          const auto &force = materials[k].body_force;
+          body_force_functions[materials[k].material_id] = parse_function<dim>(
+            std::vector<std::string>(force.begin(), force.begin() + dim),
+            parameters.constants,
+            "subsection 'Materials/Material " + std::to_string(k + 1) +
+              "', parameter 'Body force'");
+          for (unsigned int d = 0; d < dim; ++d)
+            any_body_force |= Utilities::trim(force[d]) != "0";
+        }
     }
 
 
@@ -99,10 +106,7 @@ namespace Signorini
     bool
     BoundaryConditions<dim>::has_body_force() const
     {
-      for (unsigned int d = 0; d < dim; ++d)
-        if (Utilities::trim(parameters.body_force[d]) != "0")
-          return true;
-      return false;
+      return any_body_force;
     }
 
 
@@ -139,7 +143,8 @@ namespace Signorini
     {
       for (auto &f : neumann_functions)
         f->set_time(time);
-      body_force_function->set_time(time);
+      for (auto &[id, f] : body_force_functions)
+        f->set_time(time);
     }
 
 

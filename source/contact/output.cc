@@ -98,6 +98,8 @@ namespace Signorini
             }
           ++r.n_points;
           r.n_contact += point.status != PointStatus::free;
+          if (point.status != PointStatus::free)
+            r.area += point.weight;
           // Stick and slip: points whose friction law is active (a closed
           // point excluded from friction, or with a zero threshold, is
           // closed without friction, as in the Newton lines).
@@ -149,6 +151,7 @@ namespace Signorini
         {
           r.force = Utilities::MPI::sum(r.force, comm);
           r.p_max = Utilities::MPI::max(r.p_max, comm);
+          r.area  = Utilities::MPI::sum(r.area, comm);
           r.normal_force_local =
             Utilities::MPI::sum(r.normal_force_local, comm);
           r.tangential_force_local =

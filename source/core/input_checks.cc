@@ -267,10 +267,12 @@ namespace Signorini
                             std::to_string(k + 1) + "', parameter 'Values'",
                           bc.neumann[k].values,
                           axis_labels(bc.neumann[k].values.size())});
-      inputs.push_back(
-        {"subsection 'Boundary conditions', parameter 'Body force'",
-         bc.body_force,
-         axis_labels(bc.body_force.size())});
+      for (unsigned int k = 0; k < parameters.materials.size(); ++k)
+        inputs.push_back(
+          {"subsection 'Materials/Material " + std::to_string(k + 1) +
+             "', parameter 'Body force'",
+           parameters.materials[k].body_force,
+           axis_labels(parameters.materials[k].body_force.size())});
       const auto &pairs = parameters.contact.pairs;
       for (unsigned int k = 0; k < pairs.size(); ++k)
         {
@@ -309,11 +311,15 @@ namespace Signorini
         {"subsection 'Reference solution', parameter 'Contact force'",
          force,
          axis_labels(force.size())});
-      if (!ref.contact_pressure.empty())
-        inputs.push_back(
-          {"subsection 'Reference solution', parameter 'Contact pressure'",
-           {ref.contact_pressure},
-           {""}});
+      for (const auto &[name, expression] :
+           {std::make_pair("Contact pressure", ref.contact_pressure),
+            std::make_pair("Maximum contact pressure", ref.max_pressure),
+            std::make_pair("Contact half-width", ref.half_width)})
+        if (!expression.empty())
+          inputs.push_back({"subsection 'Reference solution', parameter '" +
+                              std::string(name) + "'",
+                            {expression},
+                            {""}});
       inputs.push_back({"subsection 'Geometry', parameter 'Refinement region'",
                         {parameters.geometry.refinement_region},
                         {""},

@@ -308,6 +308,13 @@ namespace Signorini
       "Lagrangian, stress from the deformation gradient F = I + Grad u "
       "with the geometric stiffness, and Neumann pressures that follow the "
       "deformed surface; needs a model that implements it (neo-Hookean).");
+    prm.declare_entry("Body force",
+                      "0; 0; 0",
+                      Patterns::Anything(),
+                      "Body force per unit volume [N/m^3] on the cells of "
+                      "this material (e.g. its weight, density times "
+                      "gravity): Dimension expressions separated by ';' "
+                      "(extra ones ignored), functions of x, y, z and t.");
     Material::declare_model_parameters(prm);
   }
 
@@ -320,6 +327,7 @@ namespace Signorini
     finite_strain  = prm.get("Kinematics") == "finite strain";
     youngs_modulus = prm.get_double("Young's modulus");
     poissons_ratio = prm.get_double("Poisson's ratio");
+    body_force     = split_expressions(prm.get("Body force"));
   }
 
 
@@ -410,12 +418,6 @@ namespace Signorini
                       "0",
                       Patterns::Integer(0, 64),
                       "Number of subsections 'Neumann k', k = 1..N.");
-    prm.declare_entry("Body force",
-                      "0; 0; 0",
-                      Patterns::Anything(),
-                      "Body force per unit volume [N/m^3]: Dimension "
-                      "expressions separated by ';' (extra ones ignored), "
-                      "functions of x, y, z and t.");
     // Checked by parse_function_constants(), which names what is wrong
     // (a Patterns::Map only says that the whole entry does not match).
     prm.declare_entry(
@@ -447,8 +449,7 @@ namespace Signorini
                                                 const Counts     &counts)
   {
     prm.enter_subsection("Boundary conditions");
-    body_force = split_expressions(prm.get("Body force"));
-    constants  = parse_function_constants(prm.get("Function constants"));
+    constants = parse_function_constants(prm.get("Function constants"));
     dirichlet.resize(counts.n_dirichlet);
     for (unsigned int k = 0; k < counts.n_dirichlet; ++k)
       {

@@ -248,21 +248,25 @@ namespace Signorini
                         "reported as PASS.");
       prm.declare_entry("Maximum contact pressure",
                         "0",
-                        Patterns::Double(0),
+                        Patterns::Anything(),
                         "Reference for the largest contact pressure p0 = "
-                        "max(-lambda) at the contact points [Pa]; 0: not "
-                        "checked.");
+                        "max(-lambda) at the contact points [Pa], an "
+                        "expression of t (e.g. '5.07e9*sqrt(t)'), checked "
+                        "at every written step where it is positive; 0: "
+                        "not checked.");
       prm.declare_entry("Pressure tolerance",
                         "0.02",
                         Patterns::Double(0),
                         "Relative tolerance of the p0 check.");
       prm.declare_entry("Contact half-width",
                         "0",
-                        Patterns::Double(0),
+                        Patterns::Anything(),
                         "Reference contact half-width a (or radius in 3D) [m], "
-                        "measured from 'Contact centre'; 0: not checked. The "
-                        "computed a is midway between the farthest closed "
-                        "point and the nearest open point beyond it.");
+                        "measured from 'Contact centre', an expression of t, "
+                        "checked at every written step where it is "
+                        "positive; 0: not checked. The computed a is midway "
+                        "between the farthest closed point and the nearest "
+                        "open point beyond it.");
       prm.declare_entry("Contact centre",
                         "0, 0, 0",
                         point_pattern(),
@@ -449,10 +453,10 @@ namespace Signorini
   ReferenceParameters::any() const
   {
     return !displacement.empty() || !stress.empty() || !history.empty() ||
-           max_pressure > 0 || half_width > 0 || !contact_pressure.empty() ||
-           !point_values.empty() || action_reaction_tolerance > 0 ||
-           slip_law_tolerance > 0 || !contact_force.empty() ||
-           gap_tolerance > 0 || friction_ratio > 0 ||
+           !max_pressure.empty() || !half_width.empty() ||
+           !contact_pressure.empty() || !point_values.empty() ||
+           action_reaction_tolerance > 0 || slip_law_tolerance > 0 ||
+           !contact_force.empty() || gap_tolerance > 0 || friction_ratio > 0 ||
            force_variation_tolerance > 0 || cattaneo_mindlin;
   }
 
@@ -478,26 +482,31 @@ namespace Signorini
         history_name = Utilities::trim(text.substr(0, colon));
         history      = {Utilities::trim(text.substr(colon + 1))};
       }
-    tolerance                    = prm.get_double("Tolerance");
-    max_pressure                 = prm.get_double("Maximum contact pressure");
-    pressure_tolerance           = prm.get_double("Pressure tolerance");
-    half_width                   = prm.get_double("Contact half-width");
-    contact_centre               = to_doubles(prm.get("Contact centre"));
-    half_width_tolerance         = prm.get_double("Half-width tolerance");
-    contact_pressure             = prm.get("Contact pressure");
-    pressure_l2_tolerance        = prm.get_double("Pressure L2 tolerance");
-    point_value_tolerance        = prm.get_double("Point value tolerance");
-    point_values_from            = prm.get_double("Point values from time");
-    action_reaction_tolerance    = prm.get_double("Action-reaction tolerance");
-    slip_law_tolerance           = prm.get_double("Slip law tolerance");
-    contact_force                = split_expressions(prm.get("Contact force"));
-    contact_force_tolerance      = prm.get_double("Contact force tolerance");
-    contact_force_from           = prm.get_double("Contact force from time");
-    gap_tolerance                = prm.get_double("Gap tolerance");
-    friction_ratio               = prm.get_double("Friction force ratio");
-    friction_ratio_normal        = to_doubles(prm.get("Friction ratio normal"));
-    friction_ratio_tolerance     = prm.get_double("Friction ratio tolerance");
-    friction_ratio_from          = prm.get_double("Friction ratio from time");
+    tolerance = prm.get_double("Tolerance");
+    // "0" (the default) means not checked, as an empty entry.
+    const auto expression_or_empty = [&](const std::string &name) {
+      const std::string text = Utilities::trim(prm.get(name));
+      return text == "0" ? std::string() : text;
+    };
+    max_pressure              = expression_or_empty("Maximum contact pressure");
+    pressure_tolerance        = prm.get_double("Pressure tolerance");
+    half_width                = expression_or_empty("Contact half-width");
+    contact_centre            = to_doubles(prm.get("Contact centre"));
+    half_width_tolerance      = prm.get_double("Half-width tolerance");
+    contact_pressure          = prm.get("Contact pressure");
+    pressure_l2_tolerance     = prm.get_double("Pressure L2 tolerance");
+    point_value_tolerance     = prm.get_double("Point value tolerance");
+    point_values_from         = prm.get_double("Point values from time");
+    action_reaction_tolerance = prm.get_double("Action-reaction tolerance");
+    slip_law_tolerance        = prm.get_double("Slip law tolerance");
+    contact_force             = split_expressions(prm.get("Contact force"));
+    contact_force_tolerance   = prm.get_double("Contact force tolerance");
+    contact_force_from        = prm.get_double("Contact force from time");
+    gap_tolerance             = prm.get_double("Gap tolerance");
+    friction_ratio            = prm.get_double("Friction force ratio");
+    friction_ratio_normal     = to_doubles(prm.get("Friction ratio normal"));
+    friction_ratio_tolerance  = prm.get_double("Friction ratio tolerance");
+    friction_ratio_from       = prm.get_double("Friction ratio from time");
     friction_ratio_contact_frame = prm.get("Friction ratio frame") == "contact";
     force_variation_tolerance    = prm.get_double("Force variation tolerance");
     cattaneo_mindlin             = prm.get("Stick zone") == "cattaneo-mindlin";

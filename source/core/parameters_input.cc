@@ -79,11 +79,6 @@ namespace Signorini
               " expression(s) given, " + std::to_string(expected) +
               " expected for this Type and Dimension.");
         }
-      if (boundary_conditions.body_force.size() < dim)
-        throw InputError(
-          "subsection 'Boundary conditions', parameter 'Body "
-          "force': give at least Dimension expressions separated "
-          "by ';'.");
     }
 
 
@@ -145,6 +140,12 @@ namespace Signorini
           std::to_string(materials[k].material_id) +
           " is already used by Material " +
           std::to_string(seen[materials[k].material_id] + 1) + ".");
+    for (unsigned int k = 0; k < materials.size(); ++k)
+      if (materials[k].body_force.size() < dim)
+        throw InputError("subsection 'Materials/Material " +
+                         std::to_string(k + 1) +
+                         "', parameter 'Body force': give at least "
+                         "Dimension expressions separated by ';'.");
     for (unsigned int b = 0; b < geometry.bodies.size(); ++b)
       if (geometry.bodies[b].shape == BodyShape::file &&
           geometry.bodies[b].mesh_file.empty())
@@ -297,6 +298,16 @@ namespace Signorini
          "frictionless rigid obstacles are always linearised in Newton "
          "(projection, normal and curvature at every iterate); frictional "
          "pairs and meshed masters are paired again by the geometric loop."}};
+      // Entries that moved to another subsection.
+      static const std::vector<std::pair<const char *, const char *>> moved = {
+        {"Body force",
+         "it is set per material now: move the line into subsection "
+         "'Materials/Material k' of each material it acts on."}};
+      for (const auto &[name, where_now] : moved)
+        if (message.find("No entry with name <" + std::string(name) + ">") !=
+            std::string::npos)
+          return "Error in " + where + ": the entry '" + name +
+                 "' moved: " + where_now;
       std::string hint;
       for (const auto &[name, instead] : removed)
         if (message.find("No entry with name <" + std::string(name) + ">") !=

@@ -33,13 +33,14 @@ namespace Signorini
               TimerOutput::never,
               TimerOutput::wall_times)
       , system(parameters.fe_degree, mpi_communicator)
-      , boundary_conditions(parameters.boundary_conditions)
+      , boundary_conditions(parameters.boundary_conditions,
+                            parameters.materials)
       , bulk(parameters,
              system.mapping,
              system.fe,
              materials,
              boundary_conditions.neumann(),
-             boundary_conditions.body_force())
+             boundary_conditions.body_forces())
       , linear_solver(parameters.linear_solver)
       , contact(parameters,
                 system.mapping,

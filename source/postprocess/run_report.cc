@@ -207,6 +207,16 @@ namespace Signorini
             add("contact_force" + name + axis[d], s.force[d]);
           add_text("contact_points" + name + "closed",
                    std::to_string(s.n_contact));
+          // What a forming or a Hertz study plots per pair: the largest
+          // pressure, the closed area (plane strain: length), the normal
+          // and tangential force in the contact frames.
+          add("contact_pressure" + name + "max", s.p_max);
+          add((dim == 2 && !parameters.axisymmetric ? "contact_length" :
+                                                      "contact_area") +
+                name.substr(0, name.size() - 1),
+              s.area);
+          add("contact_force" + name + "normal", s.normal_force_local);
+          add("contact_force" + name + "tangential", s.tangential_force_local);
           if (parameters.contact.pairs[p].friction > 0)
             {
               add_text("contact_points" + name + "stick",

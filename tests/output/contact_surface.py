@@ -8,6 +8,10 @@ whose contact force is normal to a flat rigid master (a plane), so that the
 force on the master of pair 1 equals the integral of the contact pressure
 over the slave surface:
  - every slave face is written once (no face in two pieces);
+ - statistics.csv's per-pair columns: contact_force_1_normal equals
+   |contact force| (1e-6); the closed area (contact_area_1, in 2D
+   contact_length_1) lies between the area of the faces closed at every
+   node (not with statuses per node) and of those closed at some node;
  - the integral of the nodal contact_pressure (interpolated linearly on
    each written face: segments in 2D, bilinear quadrilaterals in 3D) equals
    |contact force of pair 1| of the same step to 1e-5 (the pressures are
@@ -54,13 +58,28 @@ def face_integral(x, p):
     return integral, area
 
 
+def node_statuses(directory):
+    """True if pair 1 decides its statuses per node (parameters.prm echo:
+    a meshed master and an integration-point rule, i.e. not nodal)."""
+    with open(os.path.join(directory, "parameters.prm")) as f:
+        settings = dict(line.strip()[4:].split("=", 1) for line in f
+                        if line.strip().startswith("set ") and "=" in line)
+    settings = {k.strip(): v.strip() for k, v in settings.items()}
+    return (settings.get("Master") == "body" and
+            settings.get("Integration rule") != "nodal")
+
+
 def read_run(directory):
     """{face centre: its nodal pressures}, integral, area, |force|, ..."""
     pieces, pvtu_name = read_series(directory, "contact_surface")
     with open(os.path.join(directory, "statistics.csv")) as f:
         stats = list(csv.DictReader(f))[-1]
-    force = [float(v) for k, v in stats.items() if k.startswith("contact_force_1_")]
+    force = [float(stats["contact_force_1_" + axis]) for axis in "xyz"
+             if "contact_force_1_" + axis in stats]
     faces, integral, area, nodes = {}, 0.0, 0.0, []
+    # The area of the faces with every node closed and of those with some
+    # node closed: the closed area of statistics.csv lies between them.
+    all_closed = some_closed = 0.0
     for k, piece in enumerate(pieces):
         p = piece["point_data"]["contact_pressure"]
         nodes += zip(p, piece["point_data"]["status"])
@@ -73,6 +92,9 @@ def read_run(directory):
             df, da = face_integral(x, [p[i] for i in cell])
             integral += df
             area += da
+            closed = [piece["point_data"]["status"][i] > 0 for i in cell]
+            all_closed += da if all(closed) else 0.0
+            some_closed += da if any(closed) else 0.0
     p_max = max(p for p, _ in nodes)
     for p, s in nodes:
         if p > 1e-8 * p_max and s <= 0:
@@ -83,7 +105,24 @@ def read_run(directory):
             break
     print("%s: %d faces in %d piece(s), surface area %.6g, largest nodal "
           "pressure %.6g" % (pvtu_name, len(faces), len(pieces), area, p_max))
-    return faces, integral, math.sqrt(sum(f * f for f in force)), p_max
+    # The per-pair columns: the normal force in the contact frames equals
+    # |contact force| on a flat master; the closed area (length in 2D)
+    # lies between the areas of the faces closed at all and at some nodes.
+    closed_area = float(stats.get("contact_area_1", stats.get("contact_length_1", "nan")))
+    normal = float(stats["contact_force_1_normal"])
+    norm = math.sqrt(sum(f * f for f in force))
+    print("statistics.csv: normal force %.8g (|contact force| %.8g), closed "
+          "area %.6g, between %.6g and %.6g (faces closed at every node, at "
+          "some node)" % (normal, norm, closed_area, all_closed, some_closed))
+    if abs(normal - norm) > 1e-6 * norm:
+        fails.append("contact_force_1_normal differs from |contact force|")
+    # With statuses per node (an integration-point rule on a meshed master)
+    # a node may close for a sliver of its faces that faces the master:
+    # only the upper bound holds there.
+    lower = 0.0 if node_statuses(directory) else all_closed
+    if not lower * (1 - 1e-6) <= closed_area <= some_closed * (1 + 1e-6):
+        fails.append("the closed area of statistics.csv is outside the closed faces' bounds")
+    return faces, integral, norm, p_max
 
 
 faces, integral, force_norm, p_max = read_run(sys.argv[1])

@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/bulk/boundary_conditions.h>
 #include <signorini/core/parameters.h>
 #include <signorini/material/history.h>
 #include <signorini/material/interface.h>
@@ -83,15 +84,15 @@ namespace Signorini
     {
     public:
       /** @p neumann: one function per Neumann condition of @p parameters;
-       * @p body_force: dim components. Functions are evaluated at the time
-       * they are set to. */
+       * @p body_forces: that of each material, dim components. Functions
+       * are evaluated at the time they are set to. */
       Assembler(
         const Parameters                                        &parameters,
         const Mapping<dim>                                      &mapping,
         const FESystem<dim>                                     &fe,
         const Materials<dim>                                    &materials,
         const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
-        const FunctionParser<dim>                               &body_force);
+        const BodyForces<dim>                                   &body_forces);
 
       /**
        * Adds F_ext - F_int of @p solution (ghosted) into @p rhs and the
@@ -228,7 +229,9 @@ namespace Signorini
 
       /** The body force of the cell of @p k into @p cell_fext. */
       void
-      add_body_force(const CellKinematics &k, Vector<double> &cell_fext) const;
+      add_body_force(const types::material_id material_id,
+                     const CellKinematics    &k,
+                     Vector<double>          &cell_fext) const;
 
       /** The face values of the Neumann loads (add_neumann()). */
       std::unique_ptr<FEFaceValues<dim>>
@@ -262,7 +265,7 @@ namespace Signorini
       const FESystem<dim>                                     &fe;
       const Materials<dim>                                    &materials;
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann;
-      const FunctionParser<dim>                               &body_force;
+      const BodyForces<dim>                                   &body_forces;
       const QGauss<dim>                                        cell_quadrature;
       mutable unsigned int                                     n_inverted = 0;
     };

@@ -11,6 +11,7 @@
 #include <signorini/core/parameters.h>
 
 #include <array>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -29,6 +30,12 @@ namespace Signorini
   {
     using namespace dealii;
 
+    /** The body force per unit volume of each material (by material id),
+     * dim components of x, y, z and the time set. */
+    template <int dim>
+    using BodyForces =
+      std::map<types::material_id, std::unique_ptr<FunctionParser<dim>>>;
+
     /** Per Dirichlet condition: the force of the supports on the body [N],
      * the mean displacement of the DoFs it constrains, and which components
      * it constrains (statistics.csv: force-displacement curves). */
@@ -46,15 +53,17 @@ namespace Signorini
     public:
       /** Parses the expressions of @p parameters (an InputError names the
        * subsection of an expression that does not parse). */
-      explicit BoundaryConditions(
-        const BoundaryConditionParameters &parameters);
+      /** The conditions of @p parameters and the body force of each of
+       * @p materials. */
+      BoundaryConditions(const BoundaryConditionParameters     &parameters,
+                         const std::vector<MaterialParameters> &materials);
 
       /** InputError if a condition names a boundary id that is not in
        * @p ids (the ids of the mesh). */
       void
       check_boundary_ids(const std::set<types::boundary_id> &ids) const;
 
-      /** A body force other than 0. */
+      /** A body force other than 0 (on some material). */
       bool
       has_body_force() const;
 
@@ -76,10 +85,11 @@ namespace Signorini
         return neumann_functions;
       }
 
-      const FunctionParser<dim> &
-      body_force() const
+      /** The body force of each material, by material id. */
+      const BodyForces<dim> &
+      body_forces() const
       {
-        return *body_force_function;
+        return body_force_functions;
       }
 
       /**
@@ -129,7 +139,8 @@ namespace Signorini
       const BoundaryConditionParameters                &parameters;
       std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;
       std::vector<std::unique_ptr<FunctionParser<dim>>> neumann_functions;
-      std::unique_ptr<FunctionParser<dim>>              body_force_function;
+      BodyForces<dim>                                   body_force_functions;
+      bool                                              any_body_force = false;
       // Per Dirichlet condition: the locally owned (DoF, component) pairs
       // it constrains, sorted.
       std::vector<std::vector<std::pair<types::global_dof_index, unsigned int>>>

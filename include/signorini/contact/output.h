@@ -48,6 +48,9 @@ namespace Signorini
         // the slave is its opposite).
         Tensor<1, dim> force;
         double         p_max = 0; // largest p = -lambda at a point [Pa]
+        // Sum of the weights of the closed points: the contact area [m^2]
+        // (plane strain: the contact length [m] per unit thickness).
+        double area = 0;
         // Sums of w |f . n| and w |P f| over the points, each in its own
         // contact frame [N].
         double       normal_force_local = 0, tangential_force_local = 0;

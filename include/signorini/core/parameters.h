@@ -97,6 +97,9 @@ namespace Signorini
     bool         finite_strain; // 'Kinematics = finite strain'
     double       youngs_modulus;
     double       poissons_ratio;
+    // Body force per unit volume on the cells of this material: dim or
+    // more expressions of x, y, z, t (the extra ones ignored).
+    std::vector<std::string> body_force;
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -142,7 +145,6 @@ namespace Signorini
   {
     std::vector<DirichletParameters> dirichlet;
     std::vector<NeumannParameters>   neumann;
-    std::vector<std::string>         body_force;
     std::map<std::string, double>    constants;
 
     static void
@@ -253,15 +255,18 @@ namespace Signorini
     std::string              history_name; // a history quantity, or empty
     std::vector<std::string> history;      // its expression (one or none)
     double                   tolerance;
-    // Contact checks (0 / empty: not checked).
-    double              max_pressure, pressure_tolerance;
+    // Contact checks (0 / empty: not checked). p0 and a: expressions of t
+    // ("" when not checked).
+    std::string         max_pressure;
+    double              pressure_tolerance;
     double              friction_ratio, friction_ratio_tolerance;
     double              friction_ratio_from; // first time checked
     std::vector<double> friction_ratio_normal;
     bool                friction_ratio_contact_frame;
     double              force_variation_tolerance; // 0: not checked
     bool                cattaneo_mindlin;          // stick zone check
-    double              half_width, half_width_tolerance;
+    std::string         half_width;
+    double              half_width_tolerance;
     std::vector<double> contact_centre;
     std::string         contact_pressure;
     double              pressure_l2_tolerance;

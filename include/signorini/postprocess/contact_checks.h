@@ -78,9 +78,9 @@ namespace Signorini
 
       // One function per check (see the class documentation).
       CheckResult
-      check_max_pressure(const Records &records) const;
+      check_max_pressure(const Records &records, const double reference) const;
       CheckResult
-      check_half_width(const Records &records) const;
+      check_half_width(const Records &records, const double reference) const;
       CheckResult
       check_pressure_profile(const Records &records, const double time) const;
       CheckResult
@@ -113,6 +113,8 @@ namespace Signorini
 
       const Parameters                    &parameters;
       std::unique_ptr<FunctionParser<dim>> exact_pressure, exact_force;
+      // p0 and a, expressions of t (nullptr: not checked).
+      std::unique_ptr<FunctionParser<dim>> exact_p0, exact_a;
       // The components of 'Contact force' that are compared (not '*').
       std::array<bool, dim> force_compared;
 
