@@ -179,6 +179,25 @@ namespace Signorini
                       point_pattern(),
                       "Translation applied to this body after it is built "
                       "[m]; the first Dimension numbers are used.");
+    prm.declare_entry("Rotation angle",
+                      "0",
+                      Patterns::Double(),
+                      "Rotation of this body after the shift [degrees], "
+                      "counter-clockwise about 'Rotation axis' (2D: about "
+                      "z) through 'Rotation centre'. Its faces keep their "
+                      "ids and a curved surface keeps its exact shape: e.g. "
+                      "180 turns a ball segment's curved side up.");
+    prm.declare_entry("Rotation axis",
+                      "0, 0, 1",
+                      point_pattern(),
+                      "Axis of the rotation in 3D (any length but 0); "
+                      "ignored in 2D.");
+    prm.declare_entry("Rotation centre",
+                      "0, 0, 0",
+                      point_pattern(),
+                      "Point the rotation turns about [m] (e.g. the body's "
+                      "'Centre' to turn a segment in place); the first "
+                      "Dimension numbers are used.");
   }
 
 
@@ -203,9 +222,12 @@ namespace Signorini
         boundary_id_map[Utilities::string_to_int(kv[0])] =
           Utilities::string_to_int(kv[1]);
       }
-    boundary_ids = to_unsigned(prm.get("Boundary ids"));
-    material_id  = prm.get_integer("Material id");
-    shift        = to_doubles(prm.get("Shift"));
+    boundary_ids    = to_unsigned(prm.get("Boundary ids"));
+    material_id     = prm.get_integer("Material id");
+    shift           = to_doubles(prm.get("Shift"));
+    rotation_angle  = prm.get_double("Rotation angle") * numbers::PI / 180.;
+    rotation_axis   = to_doubles(prm.get("Rotation axis"));
+    rotation_centre = to_doubles(prm.get("Rotation centre"));
   }
 
 

@@ -4,6 +4,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/physics/transformations.h>
 
 #include <signorini/core/input_checks.h>
 #include <signorini/geometry/mesh_checks.h>
@@ -42,6 +43,48 @@ namespace Signorini
           p[d] = v[d];
         return p;
       }
+
+      // The body's rotation ('Rotation angle' about 'Rotation axis' through
+      // 'Rotation centre'): of points, and of directions.
+      template <int dim>
+      class BodyRotation
+      {
+      public:
+        BodyRotation(const BodyParameters &body, const unsigned int b)
+            : centre(point_of<dim>(body.rotation_centre, b, "Rotation centre"))
+        {
+          if constexpr (dim == 2)
+            R = Physics::Transformations::Rotations::rotation_matrix_2d(
+              body.rotation_angle);
+          else
+            {
+              const Point<3> axis =
+                point_of<3>(body.rotation_axis, b, "Rotation axis");
+              if (axis.norm() == 0)
+                throw InputError(body_name(b) +
+                                 ", parameter 'Rotation axis': give a "
+                                 "nonzero direction.");
+              R = Physics::Transformations::Rotations::rotation_matrix_3d(
+                Tensor<1, 3>(axis / axis.norm()), body.rotation_angle);
+            }
+        }
+
+        Point<dim>
+        operator()(const Point<dim> &p) const
+        {
+          return centre + R * (p - centre);
+        }
+
+        Tensor<1, dim>
+        direction(const Tensor<1, dim> &v) const
+        {
+          return R * v;
+        }
+
+      private:
+        Point<dim>     centre;
+        Tensor<2, dim> R;
+      };
 
       // Refuses a coarse cell whose (multi)linear map is not orientation
       // preserving at every vertex: inverted or tangled (e.g. a bow-tie
@@ -381,6 +424,8 @@ namespace Signorini
                 break;
               }
           }
+        if (body.rotation_angle != 0)
+          GridTools::transform(BodyRotation<dim>(body, b), tria);
         if (body.material_id >= 0 || body.shape != BodyShape::file)
           for (const auto &cell : tria.active_cell_iterators())
             cell->set_material_id(body.material_id >= 0 ? body.material_id :
@@ -423,15 +468,18 @@ namespace Signorini
               if (inner != numbers::invalid_unsigned_int)
                 body_tria.set_all_manifold_ids_on_boundary(
                   boundary_id_of(bodies[b], b, inner), surface);
-              const Point<dim> centre =
-                point_of<dim>(bodies[b].centre, b, "Centre") +
-                point_of<dim>(bodies[b].shift, b, "Shift");
+              // The curved surface of the built (shifted, rotated) body.
+              const BodyRotation<dim> rotation(bodies[b], b);
+              const Point<dim>        centre =
+                rotation(point_of<dim>(bodies[b].centre, b, "Centre") +
+                         point_of<dim>(bodies[b].shift, b, "Shift"));
               if (dim == 3 && bodies[b].shape == BodyShape::cylinder_segment)
                 {
                   Tensor<1, dim> axis;
                   axis[dim - 1] = 1.;
                   manifolds[surface] =
-                    std::make_unique<CylindricalManifold<dim>>(axis, centre);
+                    std::make_unique<CylindricalManifold<dim>>(
+                      rotation.direction(axis), centre);
                 }
               else
                 manifolds[surface] =

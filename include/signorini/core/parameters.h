@@ -69,6 +69,9 @@ namespace Signorini
     std::vector<unsigned int>            boundary_ids;
     int                                  material_id;
     std::vector<double>                  shift;
+    // Rotation after the shift: angle [rad], axis (3D), about a point.
+    double              rotation_angle;
+    std::vector<double> rotation_axis, rotation_centre;
 
     static void
     declare_parameters(ParameterHandler &prm);
