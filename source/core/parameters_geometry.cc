@@ -21,9 +21,13 @@ namespace Signorini
       {"ball segment", BodyShape::ball_segment},
       {"cylinder segment", BodyShape::cylinder_segment},
       {"file", BodyShape::file}};
-    const SelectionTable<Segment> segments{{"full", Segment::full},
+    const SelectionTable<Segment>     segments{{"full", Segment::full},
                                            {"half", Segment::half},
                                            {"quarter", Segment::quarter}};
+    const SelectionTable<CurvedShape> curved_shapes{
+      {"none", CurvedShape::none},
+      {"sphere", CurvedShape::sphere},
+      {"cylinder", CurvedShape::cylinder}};
   } // namespace
 
 
@@ -101,6 +105,30 @@ namespace Signorini
       "For Shape = file: physical group (Gmsh tag / Abaqus surface number) -> "
       "boundary id, as 'tag: id, tag: id'. Tags not listed keep their number.");
     prm.declare_entry(
+      "Manifold",
+      "none",
+      curved_shapes.pattern(),
+      "For Shape = file: the exact surface that the faces with 'Manifold "
+      "boundary ids' lie on, so that refinement (global, local, adaptive) "
+      "puts new nodes on it; without it the flat faces of the file stay flat "
+      "when refined. sphere: a sphere (2D: a circle) about 'Centre'; "
+      "cylinder (3D): about the line through 'Centre' along 'Manifold "
+      "axis'. 'Centre' and the axis are in the file's coordinates (before "
+      "'Shift' and 'Rotation angle'). The body's cells then follow the "
+      "surface by transfinite interpolation, as in a generated ball "
+      "segment. Generated shapes have their curved surfaces already.");
+    prm.declare_entry("Manifold boundary ids",
+                      "",
+                      Patterns::List(Patterns::Integer(0, 255), 0, 255, ","),
+                      "Boundary ids (after 'Boundary id map') of the faces "
+                      "on the 'Manifold' surface; each face's vertices must "
+                      "lie on one sphere (cylinder) about it.");
+    prm.declare_entry("Manifold axis",
+                      "0, 0, 1",
+                      point_pattern(),
+                      "Direction of the axis of a 'Manifold = cylinder' "
+                      "(3D; any length but 0).");
+    prm.declare_entry(
       "Boundary ids",
       "",
       Patterns::List(Patterns::Integer(0, 255), 0, 6, ","),
@@ -161,9 +189,12 @@ namespace Signorini
         boundary_id_map[Utilities::string_to_int(kv[0])] =
           Utilities::string_to_int(kv[1]);
       }
-    boundary_ids    = to_unsigned(prm.get("Boundary ids"));
-    material_id     = prm.get_integer("Material id");
-    shift           = to_doubles(prm.get("Shift"));
+    manifold              = curved_shapes.value(prm.get("Manifold"));
+    manifold_boundary_ids = to_unsigned(prm.get("Manifold boundary ids"));
+    manifold_axis         = to_doubles(prm.get("Manifold axis"));
+    boundary_ids          = to_unsigned(prm.get("Boundary ids"));
+    material_id           = prm.get_integer("Material id");
+    shift                 = to_doubles(prm.get("Shift"));
     rotation_angle  = prm.get_double("Rotation angle") * numbers::PI / 180.;
     rotation_axis   = to_doubles(prm.get("Rotation axis"));
     rotation_centre = to_doubles(prm.get("Rotation centre"));

@@ -10,10 +10,12 @@
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <sstream>
 
 namespace Signorini
@@ -431,6 +433,145 @@ namespace Signorini
             cell->set_material_id(body.material_id >= 0 ? body.material_id :
                                                           b + 1);
       }
+
+      // The curved faces of a body and the exact surface they lie on.
+      template <int dim>
+      struct CurvedSurface
+      {
+        std::vector<types::boundary_id> boundary_ids;
+        std::unique_ptr<Manifold<dim>>  manifold; // null: no curved faces
+      };
+
+      // Refuses a 'Manifold boundary ids' entry that names no face of the
+      // built body, or a face whose vertices are not equidistant from the
+      // manifold's centre (sphere) or axis (cylinder): a wrong 'Centre'
+      // would otherwise bend the refined mesh out of shape.
+      template <int dim>
+      void
+      check_curved_faces(const Triangulation<dim>              &tria,
+                         const std::vector<types::boundary_id> &ids,
+                         const Point<dim>                      &centre,
+                         const Tensor<1, dim>                  &axis,
+                         const unsigned int                     b)
+      {
+        const auto distance = [&](const Point<dim> &p) {
+          const Tensor<1, dim> r = p - centre;
+          return (r - (r * axis) * axis).norm();
+        };
+        const std::string where = body_name(b) + ", parameter 'Manifold ";
+        std::set<types::boundary_id> found;
+        for (const auto &face : tria.active_face_iterators())
+          if (face->at_boundary() &&
+              std::find(ids.begin(), ids.end(), face->boundary_id()) !=
+                ids.end())
+            {
+              found.insert(face->boundary_id());
+              double r_min = distance(face->vertex(0)), r_max = r_min;
+              for (const auto v : face->vertex_indices())
+                {
+                  r_min = std::min(r_min, distance(face->vertex(v)));
+                  r_max = std::max(r_max, distance(face->vertex(v)));
+                }
+              if (r_max - r_min > 1e-5 * r_max)
+                {
+                  std::ostringstream text;
+                  text << where << "boundary ids': the face with centre ("
+                       << face->center() << ") and boundary id "
+                       << face->boundary_id() << " has vertices at distances "
+                       << r_min << " to " << r_max << " from the manifold's "
+                       << (axis.norm() > 0 ? "axis" : "centre")
+                       << ", so it does not lie on one surface about it. "
+                          "Check 'Centre' (in the file's coordinates)"
+                       << (axis.norm() > 0 ? " and 'Manifold axis'" : "")
+                       << ", or leave this id out.";
+                  throw InputError(text.str());
+                }
+            }
+        for (const auto id : ids)
+          if (found.count(id) == 0)
+            throw InputError(where +
+                             "boundary ids': no boundary face of "
+                             "this body has the id " +
+                             std::to_string(id) +
+                             " (ids after 'Boundary id map').");
+      }
+
+      // The curved faces of body @p b, built as @p tria (shifted and
+      // rotated): the outer and inner curved faces of a generated segment, or
+      // a file mesh's 'Manifold boundary ids'; their sphere or cylinder
+      // about the placed 'Centre'.
+      template <int dim>
+      CurvedSurface<dim>
+      curved_surface(const BodyParameters     &body,
+                     const unsigned int        b,
+                     const Triangulation<dim> &tria)
+      {
+        CurvedSurface<dim> curved;
+        const bool         segment = body.shape == BodyShape::ball_segment ||
+                             body.shape == BodyShape::cylinder_segment;
+        if (body.manifold != CurvedShape::none && body.shape != BodyShape::file)
+          throw InputError(body_name(b) +
+                           ", parameter 'Manifold': it is for Shape = file; "
+                           "a generated shape has its curved surface "
+                           "already. Remove the entry.");
+        if (body.manifold == CurvedShape::none &&
+            !body.manifold_boundary_ids.empty())
+          throw InputError(body_name(b) +
+                           ", parameter 'Manifold boundary ids': it needs "
+                           "'Manifold' (sphere or cylinder) for Shape = "
+                           "file; remove it otherwise.");
+        if (!segment && body.manifold == CurvedShape::none)
+          return curved;
+        bool           cylinder = false;
+        Tensor<1, dim> axis; // along the cylinder's axis, 0 for a sphere
+        if (segment)
+          {
+            curved.boundary_ids.push_back(boundary_id_of(body, b, 0));
+            const unsigned int inner = inner_face_group(body, dim);
+            if (inner != numbers::invalid_unsigned_int)
+              curved.boundary_ids.push_back(boundary_id_of(body, b, inner));
+            cylinder = dim == 3 && body.shape == BodyShape::cylinder_segment;
+            axis[dim - 1] = cylinder ? 1. : 0.;
+          }
+        else
+          {
+            if (body.manifold_boundary_ids.empty())
+              throw InputError(body_name(b) +
+                               ", parameter 'Manifold boundary ids': list "
+                               "the boundary ids of the faces on the "
+                               "'Manifold' surface.");
+            curved.boundary_ids.assign(body.manifold_boundary_ids.begin(),
+                                       body.manifold_boundary_ids.end());
+            cylinder = body.manifold == CurvedShape::cylinder;
+            if (cylinder && dim == 2)
+              throw InputError(body_name(b) +
+                               ", parameter 'Manifold': cylinder is for 3D "
+                               "meshes; a circle in 2D is 'sphere'.");
+            if (cylinder)
+              {
+                const Point<dim> a =
+                  point_of<dim>(body.manifold_axis, b, "Manifold axis");
+                if (a.norm() == 0)
+                  throw InputError(body_name(b) +
+                                   ", parameter 'Manifold axis': give a "
+                                   "nonzero direction.");
+                axis = a / a.norm();
+              }
+          }
+        const BodyRotation<dim> rotation(body, b);
+        const Point<dim>        centre =
+          rotation(point_of<dim>(body.centre, b, "Centre") +
+                   point_of<dim>(body.shift, b, "Shift"));
+        axis = rotation.direction(axis);
+        if (!segment)
+          check_curved_faces(tria, curved.boundary_ids, centre, axis, b);
+        if (cylinder)
+          curved.manifold =
+            std::make_unique<CylindricalManifold<dim>>(axis, centre);
+        else
+          curved.manifold = std::make_unique<SphericalManifold<dim>>(centre);
+        return curved;
+      }
     } // namespace
 
 
@@ -455,39 +596,27 @@ namespace Signorini
           check_cells(body_tria, b, bodies[b]);
           add_mesh_parts(body_tria, b, parts);
 
-          // Curved shapes: surface manifold on the curved faces, transfinite
-          // interpolation in the volume (initialised on the joined mesh).
-          if (bodies[b].shape == BodyShape::ball_segment ||
-              bodies[b].shape == BodyShape::cylinder_segment)
+          // Curved surfaces: their manifold on the curved faces. A generated
+          // segment's few coarse cells also get transfinite interpolation in
+          // the volume (initialised on the joined mesh), so that its interior
+          // nodes follow the surface; a file mesh's cells stay flat (the
+          // transfinite chart fails on irregular cells, e.g. hexahedra split
+          // from tetrahedra, and a file mesh is fine enough without it).
+          CurvedSurface<dim> curved = curved_surface(bodies[b], b, body_tria);
+          const types::manifold_id surface = 2 * b + 1, volume = 2 * b + 2;
+          if (curved.manifold && bodies[b].shape != BodyShape::file)
             {
-              const types::manifold_id surface = 2 * b + 1, volume = 2 * b + 2;
               body_tria.set_all_manifold_ids(volume);
-              body_tria.set_all_manifold_ids_on_boundary(
-                boundary_id_of(bodies[b], b, 0), surface); // outer curved
-              const unsigned int inner = inner_face_group(bodies[b], dim);
-              if (inner != numbers::invalid_unsigned_int)
-                body_tria.set_all_manifold_ids_on_boundary(
-                  boundary_id_of(bodies[b], b, inner), surface);
-              // The curved surface of the built (shifted, rotated) body.
-              const BodyRotation<dim> rotation(bodies[b], b);
-              const Point<dim>        centre =
-                rotation(point_of<dim>(bodies[b].centre, b, "Centre") +
-                         point_of<dim>(bodies[b].shift, b, "Shift"));
-              if (dim == 3 && bodies[b].shape == BodyShape::cylinder_segment)
-                {
-                  Tensor<1, dim> axis;
-                  axis[dim - 1] = 1.;
-                  manifolds[surface] =
-                    std::make_unique<CylindricalManifold<dim>>(
-                      rotation.direction(axis), centre);
-                }
-              else
-                manifolds[surface] =
-                  std::make_unique<SphericalManifold<dim>>(centre);
               volume_manifolds.push_back(volume);
             }
           else
             body_tria.set_all_manifold_ids(numbers::flat_manifold_id);
+          if (curved.manifold)
+            {
+              for (const auto id : curved.boundary_ids)
+                body_tria.set_all_manifold_ids_on_boundary(id, surface);
+              manifolds[surface] = std::move(curved.manifold);
+            }
 
           auto description = GridTools::get_coarse_mesh_description(body_tria);
           const unsigned int offset = vertices.size();

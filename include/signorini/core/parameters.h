@@ -52,6 +52,14 @@ namespace Signorini
     quarter
   };
 
+  /** The exact surface some faces of a file mesh lie on ('Manifold'). */
+  enum class CurvedShape
+  {
+    none,
+    sphere,
+    cylinder
+  };
+
   /** One body: a generated shape or a mesh file (subsection Geometry/Body k).
    */
   struct BodyParameters
@@ -66,6 +74,9 @@ namespace Signorini
     double                               length;
     std::string                          mesh_file;
     std::map<unsigned int, unsigned int> boundary_id_map;
+    CurvedShape                          manifold; // file meshes
+    std::vector<unsigned int>            manifold_boundary_ids;
+    std::vector<double>                  manifold_axis;
     std::vector<unsigned int>            boundary_ids;
     int                                  material_id;
     std::vector<double>                  shift;
