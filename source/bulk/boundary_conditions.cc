@@ -65,6 +65,114 @@ namespace Signorini
         values.set_inhomogeneity(dof, value);
         update.add_line(dof);
       }
+
+
+      // The DoFs of one support point, one per displacement component.
+      template <int dim>
+      using Node = std::array<types::global_dof_index, dim>;
+
+      // The support points on the faces of boundaries @p ids of the cells
+      // this rank knows (owned and ghost), with their positions.
+      template <int dim>
+      std::map<Node<dim>, Point<dim>>
+      boundary_nodes(const Mapping<dim>              &mapping,
+                     const DoFHandler<dim>           &dof_handler,
+                     const std::vector<unsigned int> &ids)
+      {
+        const auto                          &fe = dof_handler.get_fe();
+        std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+        std::map<Node<dim>, Point<dim>>      nodes;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!cell->is_artificial())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  std::count(ids.begin(),
+                             ids.end(),
+                             cell->face(f)->boundary_id()))
+                {
+                  cell->get_dof_indices(cell_dofs);
+                  for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+                    if (fe.system_to_component_index(i).first == 0 &&
+                        fe.has_support_on_face(i, f))
+                      {
+                        const unsigned int base =
+                          fe.system_to_component_index(i).second;
+                        Node<dim> node;
+                        for (unsigned int c = 0; c < dim; ++c)
+                          node[c] =
+                            cell_dofs[fe.component_to_system_index(c, base)];
+                        if (nodes.count(node) == 0)
+                          nodes[node] = mapping.transform_unit_to_real_cell(
+                            cell, fe.unit_support_point(i));
+                      }
+                }
+        return nodes;
+      }
+
+      // A linear relation sum_i a_i u_i = g among the DoFs of one node.
+      struct Relation
+      {
+        std::map<types::global_dof_index, double> a;
+        double                                    g = 0;
+      };
+
+      // Adds @p relation among the DoFs of @p node as a constraint line:
+      // the node's DoFs constrained already (by earlier conditions) are
+      // eliminated from it first, then it is solved for the free DoF with
+      // the largest coefficient. So two conditions meeting at a node (two
+      // rollers at a corner, a roller and a Cartesian value) combine
+      // without a cycle. A relation that earlier lines imply adds nothing;
+      // a node whose DoF is constrained from outside the node (a hanging
+      // node) keeps its lines, as for Cartesian values.
+      template <int dim>
+      void
+      add_relation(Relation                   relation,
+                   const Node<dim>           &node,
+                   AffineConstraints<double> &values,
+                   AffineConstraints<double> &update)
+      {
+        double scale = 0;
+        for (const auto &[i, a] : relation.a)
+          scale = std::max(scale, std::abs(a));
+        for (bool again = true; again;)
+          {
+            again = false;
+            for (const auto [i, a] : relation.a)
+              if (values.is_constrained(i))
+                {
+                  const auto *entries = values.get_constraint_entries(i);
+                  for (const auto &[j, w] : *entries)
+                    if (std::find(node.begin(), node.end(), j) == node.end())
+                      return; // hanging
+                  relation.g -= a * values.get_inhomogeneity(i);
+                  relation.a.erase(i);
+                  for (const auto &[j, w] : *entries)
+                    relation.a[j] += a * w;
+                  again = true;
+                  break;
+                }
+          }
+        types::global_dof_index pivot   = numbers::invalid_dof_index;
+        double                  largest = 1e-12 * scale;
+        for (const auto &[i, a] : relation.a)
+          if (std::abs(a) > largest)
+            {
+              largest = std::abs(a);
+              pivot   = i;
+            }
+        if (pivot == numbers::invalid_dof_index)
+          return;
+        const double a_p = relation.a[pivot];
+        values.add_line(pivot);
+        update.add_line(pivot);
+        for (const auto &[i, a] : relation.a)
+          if (i != pivot && a != 0)
+            {
+              values.add_entry(pivot, i, -a / a_p);
+              update.add_entry(pivot, i, -a / a_p);
+            }
+        values.set_inhomogeneity(pivot, relation.g / a_p);
+      }
     } // namespace
 
 
@@ -169,6 +277,17 @@ namespace Signorini
               add_point_constraint(k, dof_handler, tolerance, values, update);
               continue;
             }
+          if (d.frame == DirichletFrame::normal ||
+              d.frame == DirichletFrame::tangential)
+            {
+              add_flux_constraint(k, mapping, dof_handler, values, update);
+              continue;
+            }
+          if (d.frame == DirichletFrame::direction)
+            {
+              add_direction_constraint(k, mapping, dof_handler, values, update);
+              continue;
+            }
           // The support points of the faces, through the mapping (on a
           // curved boundary's manifold for Q2).
           const DirichletValues<dim> function(*dirichlet_functions[k],
@@ -251,6 +370,143 @@ namespace Signorini
       dirichlet_dofs[k].erase(std::unique(dirichlet_dofs[k].begin(),
                                           dirichlet_dofs[k].end()),
                               dirichlet_dofs[k].end());
+    }
+
+
+    // u.n = v.n (normal) or u - v parallel to n (tangential: the
+    // tangential part of u is that of v) on the condition's boundaries. The
+    // normal at a node is deal.II's (the average over the node's faces, as
+    // its normal-flux constraints compute it; a node where they find two
+    // normals, an edge, is held at v). deal.II's own tangential constraints
+    // are not used: their values are right only where v has no component
+    // along the normal's largest coordinate. Only nodes on locally owned
+    // cells are constrained: their faces are all known on this rank, so
+    // every rank computes the same lines.
+    template <int dim>
+    void
+    BoundaryConditions<dim>::add_flux_constraint(
+      const unsigned int         k,
+      const Mapping<dim>        &mapping,
+      const DoFHandler<dim>     &dof_handler,
+      AffineConstraints<double> &values,
+      AffineConstraints<double> &update)
+    {
+      const auto                        &d = parameters.dirichlet[k];
+      const auto                        &v = *dirichlet_functions[k];
+      const std::set<types::boundary_id> ids(d.boundary_ids.begin(),
+                                             d.boundary_ids.end());
+      std::map<types::boundary_id, const Function<dim> *> on_boundary;
+      for (const auto id : ids)
+        on_boundary[id] = &v;
+      AffineConstraints<double> lines;
+      lines.reinit(DoFTools::extract_locally_relevant_dofs(dof_handler));
+      if (d.frame == DirichletFrame::normal)
+        VectorTools::compute_nonzero_normal_flux_constraints(
+          dof_handler, 0, ids, on_boundary, lines, mapping);
+      else
+        VectorTools::compute_no_normal_flux_constraints(
+          dof_handler, 0, ids, lines, mapping);
+      const IndexSet active =
+        DoFTools::extract_locally_active_dofs(dof_handler);
+      const auto nodes = boundary_nodes(mapping, dof_handler, d.boundary_ids);
+      for (const auto &[node, point] : nodes)
+        {
+          if (!active.is_element(node[0]))
+            continue;
+          std::vector<unsigned int> constrained; // components with a line
+          for (unsigned int c = 0; c < dim; ++c)
+            if (lines.is_constrained(node[c]))
+              constrained.push_back(c);
+          if (constrained.empty())
+            continue;
+          if (d.frame == DirichletFrame::normal)
+            for (const unsigned int c : constrained)
+              {
+                // u_c - sum_j w_j u_j = g.
+                Relation relation;
+                relation.a[node[c]] = 1;
+                for (const auto &[j, w] :
+                     *lines.get_constraint_entries(node[c]))
+                  relation.a[j] -= w;
+                relation.g = lines.get_inhomogeneity(node[c]);
+                add_relation<dim>(relation, node, values, update);
+              }
+          else if (constrained.size() > 1)
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                Relation relation; // an edge: u = v
+                relation.a[node[c]] = 1;
+                relation.g          = v.value(point, c);
+                add_relation<dim>(relation, node, values, update);
+              }
+          else
+            {
+              // The normal line u_c = sum_j w_j u_j, w_j = -n_j / n_c: u - v
+              // along n is u_j - v_j = -w_j (u_c - v_c) for j != c.
+              const unsigned int c = constrained[0];
+              Tensor<1, dim>     w;
+              for (const auto &[j, weight] :
+                   *lines.get_constraint_entries(node[c]))
+                for (unsigned int i = 0; i < dim; ++i)
+                  if (node[i] == j)
+                    w[i] = weight;
+              for (unsigned int i = 0; i < dim; ++i)
+                if (i != c)
+                  {
+                    Relation relation;
+                    relation.a[node[i]] = 1;
+                    relation.a[node[c]] = w[i];
+                    relation.g = v.value(point, i) + w[i] * v.value(point, c);
+                    add_relation<dim>(relation, node, values, update);
+                  }
+            }
+        }
+      record_node_dofs(k, nodes, dof_handler.locally_owned_dofs());
+    }
+
+
+    // u.d = g along the unit direction d at every node of the condition's
+    // boundary faces.
+    template <int dim>
+    void
+    BoundaryConditions<dim>::add_direction_constraint(
+      const unsigned int         k,
+      const Mapping<dim>        &mapping,
+      const DoFHandler<dim>     &dof_handler,
+      AffineConstraints<double> &values,
+      AffineConstraints<double> &update)
+    {
+      const auto    &d = parameters.dirichlet[k];
+      Tensor<1, dim> n;
+      for (unsigned int i = 0; i < dim; ++i)
+        n[i] = d.direction[i];
+      n /= n.norm();
+      const auto nodes = boundary_nodes(mapping, dof_handler, d.boundary_ids);
+      for (const auto &[node, point] : nodes)
+        {
+          Relation relation;
+          for (unsigned int j = 0; j < dim; ++j)
+            relation.a[node[j]] = n[j];
+          relation.g = dirichlet_functions[k]->value(point, 0);
+          add_relation<dim>(relation, node, values, update);
+        }
+      record_node_dofs(k, nodes, dof_handler.locally_owned_dofs());
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::record_node_dofs(
+      const unsigned int k,
+      const std::map<std::array<types::global_dof_index, dim>, Point<dim>>
+                     &nodes,
+      const IndexSet &owned)
+    {
+      for (const auto &[node, point] : nodes)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (owned.is_element(node[c]))
+            dirichlet_dofs[k].emplace_back(node[c], c);
+      std::sort(dirichlet_dofs[k].begin(), dirichlet_dofs[k].end());
     }
 
 

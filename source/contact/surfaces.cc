@@ -342,15 +342,33 @@ namespace Signorini
             if (const auto *entries =
                   u_constraints.get_constraint_entries(node.dofs[c]))
               {
-                if (!entries->empty())
+                // The direction a Dirichlet line holds: e_c, or for a line
+                // among the node's own DoFs (a normal, tangential or
+                // direction condition) e_c - sum_j w_j e_j. A line to
+                // other nodes' DoFs is a hanging node's.
+                Tensor<1, dim> held;
+                held[c] = 1;
+                for (const auto &[j, w] : *entries)
+                  {
+                    const auto d =
+                      std::find(node.dofs.begin(), node.dofs.end(), j);
+                    if (d == node.dofs.end())
+                      {
+                        held = Tensor<1, dim>();
+                        break;
+                      }
+                    held[d - node.dofs.begin()] -= w;
+                  }
+                if (held.norm() == 0)
                   {
                     if (c == 0)
                       info.hanging = *entries;
                     continue;
                   }
                 for (const auto &n : node.normals)
-                  (std::abs(n[c]) > 0.5 ? info.exclude_contact :
-                                          info.exclude_friction) = true;
+                  (std::abs(n * held) > 0.5 * held.norm() ?
+                     info.exclude_contact :
+                     info.exclude_friction) = true;
               }
           const bool friction = pairs[node.pair].friction > 0;
           info.lambda         = lambda_offset + j;

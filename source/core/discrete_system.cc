@@ -185,8 +185,16 @@ namespace Signorini
       if (constraints_values.is_constrained(i) &&
           !constraints_hanging.is_constrained(i))
         {
-          const double value = constraints_values.get_inhomogeneity(i);
+          // u_i = sum_j w_j u_j + g (a Cartesian value: no entries): the
+          // update takes the state onto the line.
+          double value = constraints_values.get_inhomogeneity(i);
           constraints_first.add_line(i);
+          for (const auto &[j, w] :
+               *constraints_values.get_constraint_entries(i))
+            {
+              constraints_first.add_entry(i, j, w);
+              value += w * state[j];
+            }
           constraints_first.set_inhomogeneity(i, value - state[i]);
           if (locally_owned.is_element(i))
             {

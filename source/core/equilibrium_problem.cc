@@ -363,7 +363,7 @@ namespace Signorini
         "resists it), so the linear system is singular. Support the body "
         "along that motion (a Dirichlet condition on that component, on one "
         "node if the body must stay free otherwise: 'Boundary "
-        "conditions/Dirichlet k/Node'), drive it by a prescribed "
+        "conditions/Dirichlet k/At point'), drive it by a prescribed "
         "displacement, or let it start in contact ('Contact/Initial status "
         "= closed').");
     rigid_modes.hold(system.matrix, system.dof_handler.n_dofs(), free);

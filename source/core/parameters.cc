@@ -138,18 +138,35 @@ namespace Signorini
                       Patterns::List(Patterns::Integer(0, 255), 1, 256, ","),
                       "Boundary id(s) on which displacements are prescribed, "
                       "e.g. '12' or '12, 22'.");
-    prm.declare_entry("Components",
-                      "x, y",
-                      Patterns::MultipleSelection("x|y|z"),
-                      "Displacement components prescribed, e.g. 'y' or "
-                      "'x, y'.");
+    prm.declare_entry(
+      "Components",
+      "x, y",
+      Patterns::MultipleSelection("x|y|z|normal|tangential|direction"),
+      "What is prescribed: Cartesian displacement components, e.g. 'y' or "
+      "'x, y'; or, alone, 'normal': the displacement along the boundary's "
+      "outward normal (u.n = v.n, tangential sliding free: a roller on an "
+      "inclined or curved wall), 'tangential': the part tangential to the "
+      "boundary (u - (u.n)n = v - (v.n)n, normal free), 'direction': the "
+      "component along 'Direction' (u.d = value, the rest free). The normal "
+      "at a node is the average of the normals of its faces on the listed "
+      "boundaries (deal.II's normal-flux constraints), so list the faces of "
+      "one smooth surface in one condition; a sharp corner between two such "
+      "surfaces needs two conditions.");
     prm.declare_entry(
       "Values",
       "0; 0",
       Patterns::Anything(),
-      "Prescribed displacement [m], one expression per listed component, "
-      "separated by ';', as functions of x, y, z and the load time t "
-      "(deal.II FunctionParser syntax), e.g. '0; -0.1*t'.");
+      "Prescribed displacement [m] as functions of x, y, z and the load "
+      "time t (deal.II FunctionParser syntax), separated by ';': one "
+      "expression per listed Cartesian component, e.g. '0; -0.1*t'; for "
+      "normal and tangential the Dimension components of a vector v whose "
+      "normal (tangential) part is imposed, e.g. '0; 0' for a fixed wall; "
+      "for direction one expression, the displacement along 'Direction'.");
+    prm.declare_entry("Direction",
+                      "",
+                      point_pattern(),
+                      "For Components = direction: the direction d (any "
+                      "length but 0, normalised), Dimension numbers.");
     prm.declare_entry("At point",
                       "",
                       point_pattern(),
@@ -164,11 +181,20 @@ namespace Signorini
   {
     boundary_ids = to_unsigned(prm.get("Boundary id"));
     components.clear();
-    for (const auto &c :
-         Utilities::split_string_list(prm.get("Components"), ','))
-      components.push_back(component_index(c));
-    values   = split_expressions(prm.get("Values"));
-    at_point = to_doubles(prm.get("At point"));
+    component_names = Utilities::split_string_list(prm.get("Components"), ',');
+    frame           = DirichletFrame::cartesian;
+    for (const auto &c : component_names)
+      if (c == "normal")
+        frame = DirichletFrame::normal;
+      else if (c == "tangential")
+        frame = DirichletFrame::tangential;
+      else if (c == "direction")
+        frame = DirichletFrame::direction;
+      else
+        components.push_back(component_index(c));
+    direction = to_doubles(prm.get("Direction"));
+    values    = split_expressions(prm.get("Values"));
+    at_point  = to_doubles(prm.get("At point"));
   }
 
 

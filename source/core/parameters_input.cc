@@ -26,6 +26,56 @@ namespace Signorini
 
   namespace
   {
+    // A Dirichlet condition in the normal/tangential frame or along a
+    // direction: alone in 'Components', Dimension expressions (normal,
+    // tangential: a vector) or one (direction), a nonzero direction, no
+    // 'At point'.
+    void
+    check_dirichlet_frame(const DirichletParameters &d,
+                          const std::string         &where,
+                          const unsigned int         dim)
+    {
+      const std::string name =
+        d.frame == DirichletFrame::normal     ? "normal" :
+        d.frame == DirichletFrame::tangential ? "tangential" :
+                                                "direction";
+      if (d.component_names.size() != 1)
+        throw InputError(where + ", parameter 'Components': '" + name +
+                         "' stands alone (it is not combined with x, y, z, "
+                         "normal, tangential or direction). Use one "
+                         "condition per kind.");
+      const unsigned int expected =
+        d.frame == DirichletFrame::direction ? 1 : dim;
+      if (d.values.size() != expected)
+        throw InputError(
+          where + ", parameter 'Values': " + std::to_string(d.values.size()) +
+          " expression(s) for Components = " + name + "; give " +
+          (expected == 1 ? std::string("one expression (the displacement "
+                                       "along 'Direction')") :
+                           std::to_string(dim) +
+                             " expressions separated by ';' (a vector whose " +
+                             name + " part is imposed)") +
+          ".");
+      if (!d.at_point.empty())
+        throw InputError(where + ", parameter 'At point': it takes Cartesian "
+                                 "components; use x, y(, z) in 'Components'.");
+      if (d.frame == DirichletFrame::direction)
+        {
+          double norm = 0;
+          for (const double v : d.direction)
+            norm += v * v;
+          if (d.direction.size() != dim || norm == 0)
+            throw InputError(where + ", parameter 'Direction': give " +
+                             std::to_string(dim) +
+                             " numbers, not all zero, for Components = "
+                             "direction.");
+        }
+      else if (!d.direction.empty())
+        throw InputError(where + ", parameter 'Direction': it is for "
+                                 "Components = direction; remove it.");
+    }
+
+
     // The boundary conditions against the dimension: components, one
     // expression per component, points.
     void
@@ -39,6 +89,14 @@ namespace Signorini
           const std::string where =
             "subsection 'Boundary conditions/Dirichlet " +
             std::to_string(k + 1) + "'";
+          if (d.frame != DirichletFrame::cartesian)
+            {
+              check_dirichlet_frame(d, where, dim);
+              continue;
+            }
+          if (!d.direction.empty())
+            throw InputError(where + ", parameter 'Direction': it is for "
+                                     "Components = direction; remove it.");
           for (const unsigned int c : d.components)
             if (c >= dim)
               throw InputError(where +

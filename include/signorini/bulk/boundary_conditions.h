@@ -127,6 +127,24 @@ namespace Signorini
                  const MPI_Comm            mpi_communicator) const;
 
     private:
+      /** The lines of Dirichlet condition @p k with Components = normal or
+       * tangential (deal.II's normal-flux constraints). */
+      void
+      add_flux_constraint(const unsigned int         k,
+                          const Mapping<dim>        &mapping,
+                          const DoFHandler<dim>     &dof_handler,
+                          AffineConstraints<double> &values,
+                          AffineConstraints<double> &update);
+
+      /** The lines of Dirichlet condition @p k with Components = direction:
+       * u.d = value at each node of its boundaries. */
+      void
+      add_direction_constraint(const unsigned int         k,
+                               const Mapping<dim>        &mapping,
+                               const DoFHandler<dim>     &dof_handler,
+                               AffineConstraints<double> &values,
+                               AffineConstraints<double> &update);
+
       /** The DoFs of the vertices of boundary faces of Dirichlet condition
        * @p k at its 'At point' (within @p tolerance). */
       void
@@ -135,6 +153,14 @@ namespace Signorini
                            const double               tolerance,
                            AffineConstraints<double> &values,
                            AffineConstraints<double> &update);
+
+      /** Every component of the locally owned DoFs of @p nodes: the DoFs
+       * whose support force is the reaction of condition @p k. */
+      void
+      record_node_dofs(const unsigned int          k,
+                       const std::map<std::array<types::global_dof_index, dim>,
+                                      Point<dim>> &nodes,
+                       const IndexSet             &owned);
 
       const BoundaryConditionParameters                &parameters;
       std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;

@@ -123,12 +123,28 @@ namespace Signorini
 
   /** A Dirichlet condition on some components of one boundary (or one point of
    * it). */
+  /** What a Dirichlet condition prescribes: Cartesian components, the
+   * normal or the tangential part of a vector, or the component along a
+   * fixed direction. */
+  enum class DirichletFrame
+  {
+    cartesian,
+    normal,
+    tangential,
+    direction
+  };
+
   struct DirichletParameters
   {
     std::vector<unsigned int> boundary_ids;
-    std::vector<unsigned int> components;
-    std::vector<std::string>  values; // one expression per entry of components
-    std::vector<double>       at_point; // empty: the whole boundary
+    DirichletFrame            frame;
+    std::vector<unsigned int> components;      // cartesian: 0 = x, 1 = y, 2 = z
+    std::vector<std::string>  component_names; // as listed
+    std::vector<double>       direction;       // frame direction
+    // cartesian: one expression per entry of components; normal and
+    // tangential: the dim components of a vector; direction: one.
+    std::vector<std::string> values;
+    std::vector<double>      at_point; // empty: the whole boundary
 
     static void
     declare_parameters(ParameterHandler &prm);
