@@ -60,7 +60,7 @@ def main():
         fig, ax = plt.subplots(figsize=(6, 4))
         ax.plot(r_exact, p_exact, "k-", label="Hertz")
         ax.plot([p[0] for p in points], [p[1] for p in points], "o",
-                ms=4, label="Signorini (contact points)")
+                ms=4, label="Signorini (slave nodes)")
         ax.set_xlabel("distance from the first contact point [mm]")
         ax.set_ylabel("contact pressure p [MPa]")
         ax.set_title(title)

@@ -1,4 +1,4 @@
-// Unit test of the per-point contact law (formulation.md sections 3-5):
+// Unit test of the per-point contact law (doc/theory.md sections 3-5):
 // * every derivative block returned by evaluate_contact_law() equals central
 //   finite differences of the returned densities (n, T frozen; g = g0 + n.d,
 //   v = v0 + P d), for dim = 2, 3, states well inside free / stick / slip,

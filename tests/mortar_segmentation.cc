@@ -1,4 +1,4 @@
-// Mortar segmentation (formulation.md 6): the coupling integrals
+// Mortar segmentation (theory.md F6): the coupling integrals
 //   M_ij = int_{slave face} psi_i N^m_j dA
 // of one slave face with the master faces it overlaps, evaluated with the
 // points of segment_slave_face, against exact values computed independently:

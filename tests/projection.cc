@@ -1,5 +1,5 @@
 // Test of Signorini::Contact::project_onto_face and the rigid obstacles
-// (formulation.md section 2). Writes "output" via deallog; measured errors go
+// (doc/theory.md section 2). Writes "output" via deallog; measured errors go
 // to std::cout only (they are round-off and not reproducible bit for bit).
 
 #include <deal.II/base/logstream.h>

@@ -147,7 +147,7 @@ namespace Signorini
       e.fric                  = e.law.mu > 0;
       e.by_node               = node_statuses.by_node(p);
 
-      // Point state (formulation.md 2).
+      // Point state (theory.md F2).
       e.n_e                          = face.u_local.size();
       e.n_l                          = face.node_local.size();
       const std::vector<double> &psi = point.psi;
@@ -216,7 +216,7 @@ namespace Signorini
       s.freeze_stick          = point.newton.freeze_stick;
       s.release               = point.newton.release;
       // A point whose multiplier nodes are all excluded from contact
-      // (friction) by a Dirichlet condition (formulation.md 8) carries no
+      // (friction) by a Dirichlet condition (theory.md F8) carries no
       // contact (friction) force: its multipliers are held at zero, and the
       // plain law would act there as a penalty of stiffness rho_n (rho_t) on
       // the master. The nodal rule's points are nodes.
@@ -293,7 +293,7 @@ namespace Signorini
       };
       const PointStatus status = label(r);
       // A point that closed with a zero threshold (friction inactive,
-      // formulation.md 3.3) and one with friction on are different branches
+      // theory.md F3.3) and one with friction on are different branches
       // of the law even when both are labelled 'slip'. A slip direction that
       // turned by more than 90 degrees (in 2D: reversed) is another branch
       // of the slip law too.
@@ -308,7 +308,7 @@ namespace Signorini
       stats.n_reversed += reversed;
       stats.n_changed += changed;
 
-      // Anti-cycling (formulation.md 8), see start_newton_solve().
+      // Anti-cycling (theory.md F8), see start_newton_solve().
       const bool frozen = point.newton.freeze_contact && !e.by_node;
       if (frozen)
         {

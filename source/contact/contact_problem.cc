@@ -308,7 +308,7 @@ namespace Signorini
           // law_parameters), so that lambda_aug = -/+ delta sets the normal
           // status strictly while the friction of a point closed this way
           // starts inactive, as for a point that has just closed
-          // (formulation.md 3.3). A larger delta would be a tiny nonzero
+          // (theory.md F3.3). A larger delta would be a tiny nonzero
           // threshold: Lambda = F_t / (mu delta) of order 1e8 at the first
           // iterate.
           const double delta = 0.5 * coefficients.law(p).zero_threshold;

@@ -68,7 +68,7 @@ namespace Signorini
 
     /**
      * Everything the assembly of one contact point computes on the way from
-     * the iterate to its local rows (formulation.md 2 to 5): the law of its
+     * the iterate to its local rows (theory.md F2 to 5): the law of its
      * pair, the kinematics of the slave and master points, the point state
      * and the law's response, the friction status of its multiplier nodes
      * (node path), and the layout of its local unknowns e | m | lambda |

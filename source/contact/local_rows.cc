@@ -1,4 +1,4 @@
-// Local rows of one evaluated contact point (formulation.md 4 and 5): the
+// Local rows of one evaluated contact point (theory.md F4 and 5): the
 // residual -R and the Jacobian K on its unknowns e | m | lambda | Lambda.
 // The point path takes the law's response; the node path (statuses per
 // multiplier node) adds the friction rows of each node.

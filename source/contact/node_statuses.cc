@@ -189,7 +189,7 @@ namespace Signorini
       ContactStatistics                   &stats)
     {
       // Friction status per node (theory.md, "Friction status per node"):
-      // active if in contact with a threshold above zero (formulation.md
+      // active if in contact with a threshold above zero (doc/theory.md
       // 3.3); H_l = Lambda_l + rho_t W_l / D_l; stick iff |H_l| <= 1 (the
       // round-off tie as in the point law). Each node once (it is on
       // several faces), then its anti-cycling.

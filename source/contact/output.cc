@@ -21,7 +21,9 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <set>
+#include <tuple>
 
 namespace Signorini
 {
@@ -203,11 +205,108 @@ namespace Signorini
     }
 
 
+    // One row per slave node: the nodal values of the VTU fields, the
+    // reference and deformed position, the status of the node (pairs with
+    // statuses per node) or of its nearest contact point.
+    template <int dim>
+    std::vector<typename Output<dim>::NodeRecord>
+    Output<dim>::gather_nodes(const TrilinosWrappers::MPI::Vector &u) const
+    {
+      DoFHandler<dim> scalar_dofs(dof_handler.get_triangulation());
+      scalar_dofs.distribute_dofs(fe.base_element(0));
+      // p, gap, status, traction_k, slip_k: the VTU's nodal values.
+      const auto     fields = nodal_fields(scalar_dofs);
+      const IndexSet owned  = scalar_dofs.locally_owned_dofs();
+      std::vector<types::global_dof_index> cell_dofs(
+        scalar_dofs.get_fe().n_dofs_per_cell());
+      // The scalar DoF of node l of a slave face.
+      const auto node_dof = [&](const SlaveFace<dim> &face,
+                                const unsigned int    l) {
+        typename DoFHandler<dim>::active_cell_iterator cell(
+          &dof_handler.get_triangulation(),
+          face.cell->level(),
+          face.cell->index(),
+          &scalar_dofs);
+        cell->get_dof_indices(cell_dofs);
+        return cell_dofs[fe.system_to_component_index(face.node_local[l])
+                           .second];
+      };
+      // The reference position of node l of a face (X is in face order).
+      const auto node_position = [](const SlaveFace<dim> &face,
+                                    const unsigned int    l) {
+        for (unsigned int k = 0; k < face.k_node.size(); ++k)
+          if (face.k_node[k] == l)
+            return face.X[k];
+        return Point<dim>();
+      };
+      // Per node: the nearest contact point's distance, status and pairing.
+      std::map<types::global_dof_index, std::tuple<double, PointStatus, bool>>
+        nearest;
+      for (const auto &point : pairing.points())
+        {
+          const auto &face = surfaces.slave_faces()[point.face];
+          for (unsigned int l = 0; l < face.node_local.size(); ++l)
+            {
+              const double r  = point.x_ref.distance(node_position(face, l));
+              const auto   d  = node_dof(face, l);
+              const auto   it = nearest.find(d);
+              if (it == nearest.end() || r < std::get<0>(it->second))
+                nearest[d] = {r, point.status, point.paired};
+            }
+        }
+      std::vector<NodeRecord>           mine;
+      std::set<types::global_dof_index> seen;
+      for (const auto &face : surfaces.slave_faces())
+        for (unsigned int l = 0; l < face.node_local.size(); ++l)
+          {
+            const auto d = node_dof(face, l);
+            if (!owned.is_element(d) || !seen.insert(d).second ||
+                nearest.count(d) == 0)
+              continue;
+            NodeRecord r;
+            r.pair = face.pair;
+            r.x    = node_position(face, l);
+            for (unsigned int c = 0; c < dim; ++c)
+              r.x_deformed[c] = r.x[c] + u[face.node_dofs[l * dim + c]];
+            r.p   = fields[0].second[d];
+            r.gap = fields[1].second[d];
+            for (unsigned int k = 0; k < dim - 1; ++k)
+              {
+                r.traction[k] = fields[3 + k].second[d];
+                r.slip[k]     = fields[2 + dim + k].second[d];
+              }
+            const auto &[distance, status, paired] = nearest[d];
+            r.status = node_statuses.by_node(face.pair) ?
+                         static_cast<PointStatus>(
+                           std::lround(node_status(face.lambda_dofs[l]))) :
+                         status;
+            r.paired = paired;
+            mine.push_back(r);
+          }
+      std::vector<NodeRecord> records;
+      for (const auto &part : Utilities::MPI::gather(comm, mine, 0))
+        records.insert(records.end(), part.begin(), part.end());
+      std::sort(records.begin(),
+                records.end(),
+                [](const NodeRecord &a, const NodeRecord &b) {
+                  if (a.pair != b.pair)
+                    return a.pair < b.pair;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (std::abs(a.x[d] - b.x[d]) >
+                        1e-12 * (1 + std::abs(a.x[d])))
+                      return a.x[d] < b.x[d];
+                  return false;
+                });
+      return records;
+    }
+
+
     template <int dim>
     std::string
-    Output<dim>::write_csv(const std::string &filename) const
+    Output<dim>::write_csv(const std::string                   &filename,
+                           const TrilinosWrappers::MPI::Vector &u) const
     {
-      const auto records = gather_points();
+      const auto records = gather_nodes(u);
       if (Utilities::MPI::this_mpi_process(comm) != 0)
         return "";
       return Postprocess::write_atomically(filename, [&](std::ostream &csv) {
@@ -215,6 +314,8 @@ namespace Signorini
         csv << "pair";
         for (unsigned int d = 0; d < dim; ++d)
           csv << "," << axis[d];
+        for (unsigned int d = 0; d < dim; ++d)
+          csv << "," << axis[d] << "_deformed";
         csv << ",p";
         for (unsigned int k = 0; k < dim - 1; ++k)
           csv << ",traction_t" << k + 1;
@@ -228,6 +329,8 @@ namespace Signorini
             csv << r.pair + 1;
             for (unsigned int d = 0; d < dim; ++d)
               csv << "," << r.x[d];
+            for (unsigned int d = 0; d < dim; ++d)
+              csv << "," << r.x_deformed[d];
             csv << "," << r.p;
             for (unsigned int k = 0; k < dim - 1; ++k)
               csv << "," << r.traction[k];
@@ -238,7 +341,7 @@ namespace Signorini
               csv << r.gap;
             for (unsigned int k = 0; k < dim - 1; ++k)
               csv << "," << r.slip[k];
-            // A closed point of a frictionless pair has no stick or slip.
+            // A closed node of a frictionless pair has no stick or slip.
             const bool frictionless =
               parameters.contact.pairs[r.pair].friction == 0;
             csv << ","

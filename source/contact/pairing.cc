@@ -234,7 +234,7 @@ namespace Signorini
         }
       point.geometric.face_2 = point.geometric.face_1;
       point.geometric.face_1 = point.master_face;
-      // The contact normal points into the master (formulation.md 2), along
+      // The contact normal points into the master (theory.md F2), along
       // the slave's outward normal.
       if (!point.paired)
         point.normal = point.slave_normal;

@@ -348,7 +348,7 @@ namespace Signorini
     for (const auto &m : free)
       list += (list.empty() ? "" : "; ") + rigid_modes.describe(m);
     // Friction can hold the motion once its points have a threshold: at
-    // the first iterate after they close it is zero (formulation.md 3.3),
+    // the first iterate after they close it is zero (theory.md F3.3),
     // and while every point slips there is no tangential stiffness. The
     // motion's share of the update is then set to zero for this solve.
     const bool friction_may_hold =

@@ -74,7 +74,7 @@ namespace Signorini
   }
 
 
-  // One load step (formulation.md 7): Dirichlet values of the new time on
+  // One load step (theory.md F7): Dirichlet values of the new time on
   // the iterate, then the geometric loop (pairing, Newton) with contact, or
   // Newton alone without.
   template <int dim>
@@ -329,7 +329,7 @@ namespace Signorini
 
 
   // Largest displacement change since the pairing against the step's
-  // increment (code_aster's criterion, formulation.md 7.3).
+  // increment (code_aster's criterion, theory.md F7).
   template <int dim>
   double
   LoadStep<dim>::pairing_change(

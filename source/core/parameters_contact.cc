@@ -136,7 +136,7 @@ namespace Signorini
     prm.declare_entry("Integration rule",
                       "mortar",
                       integration_rules.pattern(),
-                      "Contact points on the slave faces (formulation.md 6): "
+                      "Contact points on the slave faces (theory.md F6): "
                       "nodal (the face nodes: trapezoid for Q1, Simpson for "
                       "Q2), gauss (Gauss-Legendre with 'Integration order' "
                       "points per direction), simpson (composite Simpson "

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <iomanip>
+#include <sstream>
 #include <unistd.h>
 
 namespace Signorini
@@ -28,45 +29,57 @@ namespace Signorini
     const Solver::LoadStepper stepper(parameters.load_stepping.max_cuts, pcout);
     double                    t_done = 0;
     const auto                start  = std::chrono::steady_clock::now();
+    double                    last_step_seconds = 0;
     for (unsigned int step = 1; step <= times.size(); ++step)
       {
-        print_step_header(step, t_done, start);
-        t_done = run_load_step(step, t_done, stepper);
+        print_step_header(step, t_done, start, last_step_seconds);
+        const auto step_start = std::chrono::steady_clock::now();
+        t_done                = run_load_step(step, t_done, stepper);
+        last_step_seconds     = std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - step_start)
+                              .count();
       }
     report.print_run_summary(times.size(), 0);
     finish_run();
   }
 
 
-  // "Load step k of n, t = ...", with elapsed and estimated remaining time
-  // (from the share of the load path done) on a terminal only: log files
-  // and test outputs stay reproducible. (Under OpenMPI the ranks' stdout is
-  // a pseudo-terminal even when mpirun's output goes to a file; their
-  // stderr is a pipe.)
+  // "Load step k of n, t = ...", with the time of the last step, the
+  // elapsed and the estimated remaining time (from the share of the load
+  // path done) on a terminal only: log files and test outputs stay
+  // reproducible. A quiet run prints this line (and nothing else per step)
+  // on a terminal only. (Under OpenMPI the ranks' stdout is a
+  // pseudo-terminal even when mpirun's output goes to a file; their stderr
+  // is a pipe.)
   template <int dim>
   void
   Simulation<dim>::print_step_header(
     const unsigned int                           step,
     const double                                 t_done,
-    const std::chrono::steady_clock::time_point &start) const
+    const std::chrono::steady_clock::time_point &start,
+    const double                                 last_step_seconds) const
   {
     const auto &times = parameters.load_stepping.step_times;
-    const bool  show_eta =
+    const bool  terminal =
       isatty(STDOUT_FILENO) != 0 && isatty(STDERR_FILENO) != 0;
-    pcout << "Load step " << step << " of " << times.size()
-          << ", t = " << format(times[step - 1], 4);
-    if (show_eta && t_done > 0)
+    const bool quiet = parameters.output.verbosity == Verbosity::quiet;
+    if (quiet && !terminal)
+      return;
+    std::ostringstream line;
+    line << "Load step " << step << " of " << times.size()
+         << ", t = " << format(times[step - 1], 4);
+    if (terminal && t_done > 0)
       {
         const double elapsed = std::chrono::duration<double>(
                                  std::chrono::steady_clock::now() - start)
                                  .count();
         const double left =
           elapsed / t_done * std::max(0., times.back() - t_done);
-        pcout << std::fixed << std::setprecision(1) << "  (elapsed " << elapsed
-              << " s, about " << left << " s left)" << std::defaultfloat
-              << std::setprecision(6);
+        line << std::fixed << std::setprecision(1) << "  (last step "
+             << last_step_seconds << " s, elapsed " << elapsed << " s, about "
+             << left << " s left)";
       }
-    pcout << std::endl;
+    (quiet ? sout : pcout) << line.str() << std::endl;
   }
 
 

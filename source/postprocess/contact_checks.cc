@@ -194,13 +194,10 @@ namespace Signorini
 
     template <int dim>
     std::vector<CheckResult>
-    ContactChecks<dim>::evaluate(
-      const double                         time,
-      const Contact::ContactProblem<dim>  &contact,
-      const TrilinosWrappers::MPI::Vector &state,
-      const double                         force_level,
-      const std::function<double(const Point<dim> &, const unsigned int)>
-        &displacement_at)
+    ContactChecks<dim>::evaluate(const double                         time,
+                                 const Contact::ContactProblem<dim>  &contact,
+                                 const TrilinosWrappers::MPI::Vector &state,
+                                 const double force_level)
     {
       const auto              &ref = parameters.reference;
       std::vector<CheckResult> results;

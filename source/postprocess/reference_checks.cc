@@ -35,11 +35,8 @@ namespace Signorini
       {
         auto results = solution->evaluate(data);
         if (data.contact)
-          for (auto &r : contact->evaluate(data.time,
-                                           *data.contact,
-                                           data.state,
-                                           data.force_level,
-                                           data.displacement_at))
+          for (auto &r : contact->evaluate(
+                 data.time, *data.contact, data.state, data.force_level))
             results.push_back(std::move(r));
         for (auto &r : contact->point_values(data.time, data.displacement_at))
           results.push_back(std::move(r));

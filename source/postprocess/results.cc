@@ -99,7 +99,8 @@ namespace Signorini
           std::ostringstream name;
           name << parameters.output.directory << "/contact_" << std::setw(4)
                << std::setfill('0') << step << ".csv";
-          check_output(contact.contact_output().write_csv(name.str()));
+          check_output(
+            contact.contact_output().write_csv(name.str(), system.solution));
         }
       // The step's line in statistics.csv last: a step listed there has
       // all its files on disk.

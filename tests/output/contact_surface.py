@@ -19,6 +19,10 @@ over the slave surface:
  - the status agrees with the pressure: a node with pressure above 1e-8 of
    the largest is closed (status > 0), an open node (status 0) carries no
    pressure;
+ - the contact CSV of that step has one row per slave node: the same
+   nodes as the surface VTU, each once, with the VTU's pressure (to 1e-6
+   of the largest) and x_deformed - x equal to the VTU's displacement (to
+   1e-6 of the largest);
  - with a second directory (the same scene on another number of ranks):
    the same faces, with the same nodal pressures to 1e-6 of the largest.
 Prints the numbers; exit code 1 on failure.
@@ -69,6 +73,47 @@ def node_statuses(directory):
             settings.get("Integration rule") != "nodal")
 
 
+def check_csv(directory, pieces):
+    """The last contact_NNNN.csv against the surface VTU: one row per
+    written node, the same pressure and displacement."""
+    name = sorted(f for f in os.listdir(directory)
+                  if f.startswith("contact_") and f.endswith(".csv"))[-1]
+    with open(os.path.join(directory, name)) as f:
+        rows = list(csv.DictReader(f))
+    points = [x for piece in pieces for x in piece["points"]]
+    scale = max(abs(c) for x in points for c in x) or 1.0
+    dim = 3 if "z" in rows[0] else 2
+
+    def key(x):
+        return tuple(round(c / scale, 5) for c in x[:dim])
+
+    vtu = {}
+    for piece in pieces:
+        data = piece["point_data"]
+        for i, x in enumerate(piece["points"]):
+            vtu[key(x)] = (data["contact_pressure"][i], data["displacement"][i])
+    p_max = max(abs(p) for p, _ in vtu.values())
+    u_max = max(abs(c) for _, u in vtu.values() for c in u[:dim]) or 1.0
+    keys = [key([float(r[a]) for a in "xyz"[:dim]]) for r in rows]
+    dp = du = 0.0
+    for r, k in zip(rows, keys):
+        if k not in vtu:
+            fails.append("%s: the node %s is not in the surface VTU" % (name, k))
+            return
+        p, u = vtu[k]
+        dp = max(dp, abs(float(r["p"]) - p))
+        for d, a in enumerate("xyz"[:dim]):
+            du = max(du, abs(float(r[a + "_deformed"]) - float(r[a]) - u[d]))
+    print("%s: %d rows, %d surface VTU nodes; pressure within %.2e, "
+          "x_deformed - x within %.2e of the largest (tolerance 1e-6)" % (
+              name, len(rows), len(vtu), dp / p_max, du / u_max))
+    if len(set(keys)) != len(keys) or len(keys) != len(vtu):
+        fails.append("%s: %d rows for %d nodes (%d distinct)" % (
+            name, len(keys), len(vtu), len(set(keys))))
+    if dp > 1e-6 * p_max or du > 1e-6 * u_max:
+        fails.append("%s: values differ from the surface VTU" % name)
+
+
 def read_run(directory):
     """{face centre: its nodal pressures}, integral, area, |force|, ..."""
     pieces, pvtu_name = read_series(directory, "contact_surface")
@@ -96,6 +141,7 @@ def read_run(directory):
             all_closed += da if all(closed) else 0.0
             some_closed += da if any(closed) else 0.0
     p_max = max(p for p, _ in nodes)
+    check_csv(directory, pieces)
     for p, s in nodes:
         if p > 1e-8 * p_max and s <= 0:
             fails.append("a node with pressure %.6g is open (status %g)" % (p, s))

@@ -17,7 +17,7 @@
 
 /**
  * The history of the active set across Newton iterates and geometric
- * iterations (formulation.md 8, doc/robustness.md): anti-cycling (status
+ * iterations (theory.md F8, doc/robustness.md): anti-cycling (status
  * cycles, freezes and their release at convergence), the freezes of the
  * geometric loop, and the release extrapolation near a shrinking contact
  * edge. It keeps the history of the multiplier nodes (statuses per node)
@@ -114,7 +114,7 @@ namespace Signorini
       release_frozen(Points &points, unsigned int &refrozen);
 
       /**
-       * Anti-cycling across pairings (formulation.md 7.3 and 8). A point
+       * Anti-cycling across pairings (theory.md F7 and 8). A point
        * whose converged status at the end of geometric iteration g equals
        * its status at the end of g-2 and differs from g-1 makes the fixed
        * point on the geometry 2-cycle: its status is frozen as in a Newton

@@ -52,7 +52,7 @@ namespace Signorini
 
     /**
      * The contact residual and its exact Jacobian (the "assembly" step of
-     * the data path for contact; formulation.md 2 to 5): the loop over the
+     * the data path for contact; theory.md F2 to 5): the loop over the
      * contact points of the current pairing. Each point goes state ->
      * law -> local rows: evaluate_point() (kinematics, gap, slip,
      * multipliers, the law's response or the node path's),

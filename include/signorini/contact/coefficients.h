@@ -11,7 +11,7 @@ namespace Signorini
   namespace Contact
   {
     /**
-     * The augmentation coefficients of the contact pairs (formulation.md 8,
+     * The augmentation coefficients of the contact pairs (theory.md F8,
      * "magic coefficients") and the law parameters of a pair:
      * - rho_n = c_n E / h, with h the mean slave face size and E the
      *   softer body's representative modulus (the slave's, or a meshed

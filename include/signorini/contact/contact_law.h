@@ -12,7 +12,7 @@ namespace Signorini
     using namespace dealii;
 
     /**
-     * Status of one contact point, see formulation.md sections 3.1 and 3.2.
+     * Status of one contact point, see doc/theory.md sections 3.1 and 3.2.
      *
      * A point is `free` iff it is not in contact. An in-contact point is
      * `stick` or `slip` according to the friction test |h| <= 1 of section
@@ -35,7 +35,7 @@ namespace Signorini
 
 
     /**
-     * Coefficients of the augmented Lagrangian contact law (formulation.md
+     * Coefficients of the augmented Lagrangian contact law (doc/theory.md
      * sections 3 and 4). Units assume lambda is a pressure [Pa] and
      * displacements are in [m]. They are expected to be validated where they
      * are parsed; evaluate_contact_law() only checks them in debug mode.
@@ -75,7 +75,7 @@ namespace Signorini
        * free_friction_scale * Lambda [Pa m], so that it has the units of
        * the active rows, (mu lambda_f / rho_t)(T Lambda - P_B(h)).
        * ContactProblem uses 1e-4 mu p_ref / rho_t, with p_ref the pressure
-       * level of rho_t. With weight 1 (formulation.md 4 as written) the
+       * level of rho_t. With weight 1 (theory.md F4 as written) the
        * mixture of free and active points in one node's Lambda row
        * (mortar, Gauss) depends on the unit system. Default 1.
        */
@@ -85,7 +85,7 @@ namespace Signorini
 
     /**
      * Everything known at one contact point for the current Newton iterate
-     * (formulation.md section 2); pairing, n and T are frozen inside a
+     * (doc/theory.md section 2); pairing, n and T are frozen inside a
      * geometric iteration.
      */
     template <int dim>
@@ -126,7 +126,7 @@ namespace Signorini
       Tensor<1, dim - 1> Lambda;
 
       /**
-       * Anti-cycling (formulation.md 8, "status freeze"): keep the contact
+       * Anti-cycling (theory.md F8, "status freeze"): keep the contact
        * branch whatever the sign of lambda_aug. Set by the assembly for a
        * point whose status cycled; false for the plain law.
        */
@@ -159,7 +159,7 @@ namespace Signorini
 
     /**
      * Residual densities at one contact point and their exact derivatives
-     * (formulation.md sections 4 and 5) with respect to the point variables
+     * (doc/theory.md sections 4 and 5) with respect to the point variables
      *   d = u^e(xi^e) - u^m(xi^m)   (relative displacement, dg/dd = n,
      *                                dv/dd = P),
      *   lambda, Lambda.
@@ -273,7 +273,7 @@ namespace Signorini
 
 
     /**
-     * Orthonormal tangent basis for the unit normal @p n (formulation.md
+     * Orthonormal tangent basis for the unit normal @p n (doc/theory.md
      * section 2). 2D: tau_1 = (n_y, -n_x). 3D: tau_1 is the normalised
      * cross product of n with the coordinate axis least aligned with n,
      * tau_2 = n x tau_1, so that (tau_1, tau_2, n) is right-handed (as
@@ -322,7 +322,7 @@ namespace Signorini
      * and D_l = sum_k w_k psi_l over all of them (psi: the multiplier
      * basis, dual where ContactProblem uses it). Active nodes carry the
      * row G_l = 0, free ones D_l lambda_l = 0, so the converged solution
-     * does not depend on rho_n (formulation.md 8), as with the nodal rule,
+     * does not depend on rho_n (theory.md F8), as with the nodal rule,
      * of which this is the weighted (mortar) form.
      */
     /**

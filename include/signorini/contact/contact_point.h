@@ -99,7 +99,7 @@ namespace Signorini
       Point<dim>                          x_m_rigid;
       Tensor<1, dim>                      rigid_increment;
 
-      // The last evaluation: status and law branch (formulation.md 3.3),
+      // The last evaluation: status and law branch (theory.md F3.3),
       // slip direction h / |h| if slipping, and the values written out.
       PointStatus        status          = PointStatus::free;
       bool               friction_active = false;

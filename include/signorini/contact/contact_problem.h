@@ -40,7 +40,7 @@
 #include <vector>
 
 /**
- * The contact part of the system (formulation.md sections 1-7): the slave
+ * The contact part of the system (doc/theory.md sections 1-7): the slave
  * surfaces with their multiplier unknowns, the master surfaces (meshed faces
  * or rigid analytic obstacles), the pairing of contact points, and the
  * assembly of the contact residual and its exact Jacobian.
@@ -135,7 +135,7 @@ namespace Signorini
        * Finds the slave and master surfaces, numbers the multipliers and
        * computes the coefficients. Needs the displacement constraints
        * (hanging nodes and Dirichlet) of the locally relevant DoFs to decide
-       * which slave nodes are excluded (formulation.md 8, over-constraint).
+       * which slave nodes are excluded (theory.md F8, over-constraint).
        */
       void
       setup(const AffineConstraints<double> &u_constraints,
@@ -152,7 +152,7 @@ namespace Signorini
 
 
       /**
-       * Pairs every contact point (geometric iteration, formulation.md 7):
+       * Pairs every contact point (geometric iteration, theory.md F7):
        * closest-point projection on the master faces proposed by a
        * bounding-box tree, or on the rigid obstacle at time @p time.
        * @p state is the ghosted system vector. @p step_start_time is the
@@ -336,14 +336,14 @@ namespace Signorini
        *   pair carry (sum of w f over its points: what the master receives,
        *   by the same shape functions that sum to one) against the force
        *   that the multiplier unknowns stand for, recomputed from them
-       *   alone: the traction lambda n + mu lambda T Lambda (formulation.md
+       *   alone: the traction lambda n + mu lambda T Lambda (doc/theory.md
        *   1 and 4; per node with statuses per node). They differ by the
        *   augmentation terms (rho_n g, rho_t v), which vanish at a
        *   converged state, and by any error of the law in the rows.
        * - Coulomb's law where the contact slips: at every slipping point
        *   (statuses per point) or slipping multiplier node (statuses per
        *   node), the tangential force that the slave receives opposes the
-       *   slip increment v (formulation.md 3.2: h / |h| along v at
+       *   slip increment v (theory.md F3.2: h / |h| along v at
        *   convergence) and |f_t| = mu |f_n|; for a node, its force
        *   F_l = sum_k w psi_l f, split by its mean normal, against its
        *   weighted slip sum_k w psi~_l v (exact on flat masters; on curved

@@ -15,7 +15,7 @@ namespace Signorini
       unsigned int n_slip     = 0;
       unsigned int n_changed  = 0; // status differs from the last evaluation
       unsigned int n_reversed = 0; // slip direction turned by > 90 degrees
-      // Anti-cycling (formulation.md 8), counted at new iterates only:
+      // Anti-cycling (theory.md F8), counted at new iterates only:
       unsigned int n_cycling      = 0; // points back to their status of k-2
       unsigned int n_frozen       = 0; // points whose status is frozen now
       unsigned int n_newly_frozen = 0; // frozen at this evaluation

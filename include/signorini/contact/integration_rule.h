@@ -8,7 +8,7 @@
 #include <memory>
 
 /**
- * Contact points on the slave surface (formulation.md section 6). A rule
+ * Contact points on the slave surface (doc/theory.md section 6). A rule
  * gives, for one slave face, the points xi^e on the unit face and their
  * weights; the contact assembly evaluates the per-point law there. The fixed
  * rules (nodal, Gauss, Simpson, Newton-Cotes) return the same quadrature for

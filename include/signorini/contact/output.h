@@ -91,11 +91,43 @@ namespace Signorini
       std::vector<PointRecord>
       gather_points() const;
 
-      /** Writes the per-step slave-surface CSV (collective; rank 0 writes,
-       * under a temporary name renamed into place). Returns "" or why the
-       * write failed (rank 0). */
+      /** One slave node: its reference and deformed position, the nodal
+       * values of nodal_fields() (the surface VTU's), and its status (its
+       * own for a pair with statuses per node, else that of its nearest
+       * contact point); paired: that point found a master face. */
+      struct NodeRecord
+      {
+        unsigned int       pair;
+        Point<dim>         x;          // reference position
+        Point<dim>         x_deformed; // x + u
+        double             p;          // pressure that carries force
+        Tensor<1, dim - 1> traction;   // mu lambda Lambda (tangent basis)
+        double             gap;        // > 0: interpenetration
+        Tensor<1, dim - 1> slip;       // v in the tangent basis
+        PointStatus        status;
+        bool               paired;
+
+        template <class Archive>
+        void
+        serialize(Archive &archive, const unsigned int)
+        {
+          archive &pair &x &x_deformed &p &traction &gap &slip &status &paired;
+        }
+      };
+
+      /** The slave nodes, each once, gathered on rank 0 (empty elsewhere),
+       * sorted by (pair, reference position); @p u: the ghosted
+       * displacement (collective). */
+      std::vector<NodeRecord>
+      gather_nodes(const TrilinosWrappers::MPI::Vector &u) const;
+
+      /** Writes the per-step slave-surface CSV, one row per slave node
+       * (collective; rank 0 writes, under a temporary name renamed into
+       * place); @p u: the ghosted displacement. Returns "" or why the write
+       * failed (rank 0). */
       std::string
-      write_csv(const std::string &filename) const;
+      write_csv(const std::string                   &filename,
+                const TrilinosWrappers::MPI::Vector &u) const;
 
       /**
        * Nodal fields on the displacement mesh for the VTU (zero away from

@@ -17,7 +17,7 @@
 #include <vector>
 
 /**
- * The contact points and their pairing with the master (formulation.md 6
+ * The contact points and their pairing with the master (theory.md F6
  * and 7): the points of the integration rule on the owned slave faces (the
  * mortar rule cuts the faces of meshed pairs by the master faces at every
  * pairing), the search of a master face through a bounding-box tree, the
@@ -118,13 +118,13 @@ namespace Signorini
       std::string
       rule_description() const;
 
-      /** g of formulation.md 2 at @p point (-max if unpaired). */
+      /** g of theory.md F2 at @p point (-max if unpaired). */
       double
       gap(const ContactPoint<dim>             &point,
           const TrilinosWrappers::MPI::Vector &state) const;
 
       /** Tangent coordinates T^T v of the slip increment v of
-       * formulation.md 2 at a paired @p point (from @p start). */
+       * theory.md F2 at a paired @p point (from @p start). */
       Tensor<1, dim - 1>
       slip(const ContactPoint<dim>             &point,
            const TrilinosWrappers::MPI::Vector &state,
@@ -179,7 +179,7 @@ namespace Signorini
 
       /**
        * Mortar rule: cuts every slave face of a meshed pair by the master
-       * faces at their current positions @p x_master (formulation.md 6)
+       * faces at their current positions @p x_master (theory.md F6)
        * and rebuilds the contact points; a new point takes the last status
        * of the nearest old point of its face.
        */

@@ -15,7 +15,7 @@ namespace Signorini
 
     /**
      * Result of the closest-point projection of a point p onto one master
-     * face (pairing step of formulation.md section 2). Lengths in [m].
+     * face (pairing step of doc/theory.md section 2). Lengths in [m].
      */
     template <int dim>
     struct FaceProjection
@@ -76,7 +76,7 @@ namespace Signorini
 
     /**
      * Closest-point projection of p onto ONE master face, given by the
-     * current positions of its Lagrange support points (formulation.md
+     * current positions of its Lagrange support points (doc/theory.md
      * section 2, "Pairing"). The face map is
      *   x(xi) = sum_k N_k(xi) X_k,  xi in [0,1]^(dim-1),
      * with N_k the shape functions of FE_Q<dim-1>(degree), so `face_points`
@@ -115,7 +115,7 @@ namespace Signorini
 
     /**
      * Where the straight line p + t d meets a face (mortar segmentation,
-     * formulation.md section 6): solves x(xi) = p + t d for (xi, t) by
+     * doc/theory.md section 6): solves x(xi) = p + t d for (xi, t) by
      * Newton from the face centre; x(xi) is the face map of
      * project_onto_face (same node order). xi is not clamped.
      */

@@ -6,7 +6,7 @@
 #include <vector>
 
 /**
- * Segment-based ("mortar") integration on one slave face (formulation.md
+ * Segment-based ("mortar") integration on one slave face (doc/theory.md
  * section 6). The slave face is cut into pieces by the master faces it
  * overlaps, so that the coupling integrands (psi x N^m, the gap) are smooth
  * on every piece; Gauss points are placed on each piece.

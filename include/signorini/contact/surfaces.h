@@ -19,7 +19,7 @@
 #include <vector>
 
 /**
- * The contact surfaces (formulation.md 1 and 8): the slave faces of this
+ * The contact surfaces (theory.md F1 and 8): the slave faces of this
  * rank with their multiplier unknowns, the master faces of every rank, the
  * slave nodes with their exclusions at Dirichlet conditions and their
  * hanging-node weights, and the constraint lines this adds. setup() builds

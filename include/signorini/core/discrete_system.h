@@ -30,7 +30,7 @@ namespace Signorini
    * A plain aggregate, shared by reference: Simulation sets it up and
    * adapts it, EquilibriumProblem assembles and solves on it, LoadStep
    * moves its state along the load path, Postprocess::Results writes
-   * it. The residual convention is the one of formulation.md section 4:
+   * it. The residual convention is the one of doc/theory.md section 4:
    * R = F_int - F_ext, Newton solves K dU = -R, with the Dirichlet values
    * on the iterate (constraints_values) and homogeneous constraints on the
    * update (constraints_update).

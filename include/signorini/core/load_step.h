@@ -21,7 +21,7 @@ namespace Signorini
   using Solver::NewtonFailure;
 
   /**
-   * One load step (formulation.md 7), as the problem of the load stepper
+   * One load step (theory.md F7), as the problem of the load stepper
    * (Solver::QuasiStaticProblem): the loads and Dirichlet values of the
    * new time, the extrapolated predictor, then the geometric loop of
    * pairings with a Newton solve (Solver::NewtonSolver on the

@@ -327,7 +327,7 @@ namespace Signorini
     parse_parameters(ParameterHandler &prm);
   };
 
-  /** One contact pair (subsection Contact/Pair k), formulation.md 2. */
+  /** One contact pair (subsection Contact/Pair k), theory.md F2. */
   struct ContactPairParameters
   {
     std::vector<unsigned int> slave_ids;
@@ -353,7 +353,7 @@ namespace Signorini
     parse_parameters(ParameterHandler &prm);
   };
 
-  /** Integration rule on the slave surface (formulation.md 6). */
+  /** Integration rule on the slave surface (theory.md F6). */
   enum class IntegrationRule
   {
     nodal,
@@ -379,7 +379,7 @@ namespace Signorini
     double                             projection_tolerance;
     double                             geometric_tolerance;
     unsigned int                       max_geometric_iterations;
-    // Anti-cycling (formulation.md 8): a contact point whose status returns
+    // Anti-cycling (theory.md F8): a contact point whose status returns
     // to the one it had two Newton iterates before (stick/slip/stick,
     // contact/free/contact, slip direction reversed and back) this many
     // times in one Newton solve is frozen: kept in contact, or kept

@@ -26,7 +26,7 @@
 /**
  * One Signorini run: mesh, finite element space, quasi-static load stepping
  * with a Newton loop per step, output. The residual convention is the one of
- * formulation.md section 4: R = F_int - F_ext, Newton solves K dU = -R, with
+ * doc/theory.md section 4: R = F_int - F_ext, Newton solves K dU = -R, with
  * Dirichlet values imposed on the iterate and homogeneous constraints on the
  * update. A step that does not converge is halved and retried (Load
  * stepping/Maximum step cuts) before the run stops with a RunError.
@@ -112,7 +112,8 @@ namespace Signorini
     void
     print_step_header(const unsigned int                           step,
                       const double                                 t_done,
-                      const std::chrono::steady_clock::time_point &start) const;
+                      const std::chrono::steady_clock::time_point &start,
+                      const double last_step_seconds) const;
     /** Load step @p step from @p t_done: returns the time reached. */
     double
     run_load_step(const unsigned int         step,

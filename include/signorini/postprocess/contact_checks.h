@@ -48,20 +48,15 @@ namespace Signorini
        * The checks of the step ending at @p time. @p state is the
        * converged ghosted system vector; @p force_level the force level of
        * the step (the largest internal or external force norm, the scale of
-       * a contact force that is zero up to round-off); @p
-       * displacement_at(p, c) the displacement component c at point p
-       * (collective). Checks that keep
+       * a contact force that is zero up to round-off). Checks that keep
        * history (stick zone after a reversal, force variation) record the
        * step.
        */
       std::vector<CheckResult>
-      evaluate(
-        const double                         time,
-        const Contact::ContactProblem<dim>  &contact,
-        const TrilinosWrappers::MPI::Vector &state,
-        const double                         force_level,
-        const std::function<double(const Point<dim> &, const unsigned int)>
-          &displacement_at);
+      evaluate(const double                         time,
+               const Contact::ContactProblem<dim>  &contact,
+               const TrilinosWrappers::MPI::Vector &state,
+               const double                         force_level);
 
       /** The 'Point values' checks of the step ending at @p time (with or
        * without contact; from 'Point values from time' on). */

@@ -10,7 +10,7 @@
 #include <vector>
 
 /**
- * The generalised Newton method of formulation.md 7.2 on a
+ * The generalised Newton method of theory.md F7 on a
  * NonlinearProblem: the statuses are decided again at every iterate, and a
  * solve has converged when every block of the residual is small and no
  * status changed since the previous iterate. The convergence rules (the

@@ -25,7 +25,7 @@
  * nodal vector t. The commonest case is a body pushed along a contact
  * surface by a force, held tangentially by friction alone: at the first
  * iterate of a step the friction threshold of a point that has just closed
- * is zero (formulation.md 3.3), and so is its tangential stiffness.
+ * is zero (theory.md F3.3), and so is its tangential stiffness.
  *
  * find() evaluates K t per motion (one matrix-vector product each) and
  * compares the displacement rows and the multiplier rows with their own

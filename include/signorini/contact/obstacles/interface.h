@@ -34,7 +34,7 @@ namespace Signorini
 
     /**
      * Closest point, normal and gap of a point with respect to a rigid
-     * obstacle surface (formulation.md section 2), with the derivatives the
+     * obstacle surface (doc/theory.md section 2), with the derivatives the
      * Newton linearisation of the geometry needs.
      */
     template <int dim>
