@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/trilinos_index_access.h>
 
 #include <Epetra_CrsMatrix.h>
@@ -266,31 +267,105 @@ namespace Signorini
       // stiffnesses: about E h smaller).
       const auto [scale_u, scale_m] = scales(K, n_u);
 
-      std::vector<Motion>           motions;
-      TrilinosWrappers::MPI::Vector Kt(owned, comm);
+      std::vector<Motion> motions;
       for (unsigned int b = 0; b < bodies.size(); ++b)
-        for (unsigned int k = 0; k < n_modes; ++k)
+        {
+          std::vector<TrilinosWrappers::MPI::Vector> Kt(
+            n_modes, TrilinosWrappers::MPI::Vector(owned, comm));
+          const auto n_before = motions.size();
+          for (unsigned int k = 0; k < n_modes; ++k)
+            {
+              // The joint motion of all bodies only when no body alone has
+              // that motion free (its springs hold the joint one too).
+              if (bodies.size() > 1 && b + 1 == bodies.size() &&
+                  std::any_of(motions.begin(), motions.end(), [&](auto &m) {
+                    return m.mode == k;
+                  }))
+                continue;
+              const auto &t = bodies[b].modes[k];
+              K.vmult(Kt[k], t);
+              double r_u = 0, r_m = 0;
+              for (const auto row : owned)
+                (row < n_u ? r_u : r_m) =
+                  std::max(row < n_u ? r_u : r_m, std::abs(Kt[k][row]));
+              r_u                = Utilities::MPI::max(r_u, comm);
+              r_m                = Utilities::MPI::max(r_m, comm);
+              const double t_max = t.linfty_norm();
+              if (t_max == 0)
+                continue;
+              if (r_u <= 1e-8 * scale_u * t_max &&
+                  r_m <= 1e-8 * scale_m * t_max)
+                motions.push_back({b, k, {}});
+            }
+          // A body (not the joint motion) that no single mode moves freely:
+          // a combination may (an inclined roller's translation).
+          if (motions.size() == n_before &&
+              (bodies.size() == 1 || b + 1 < bodies.size()))
+            for (auto &m : find_combinations(b, Kt, n_u, scale_u, scale_m))
+              motions.push_back(std::move(m));
+        }
+      return motions;
+    }
+
+
+    template <int dim>
+    std::vector<typename RigidModes<dim>::Motion>
+    RigidModes<dim>::find_combinations(
+      const unsigned int                                b,
+      const std::vector<TrilinosWrappers::MPI::Vector> &Kt,
+      const types::global_dof_index                     n_u,
+      const double                                      scale_u,
+      const double                                      scale_m) const
+    {
+      // G_kl = (K t_k . K t_l) with the u and multiplier rows scaled by
+      // their scales, N_kl = t_k . t_l: a combination alpha with
+      // alpha^T G alpha <= 1e-16 alpha^T N alpha moves the body at no
+      // force (relative to the stiffness, as for a single mode).
+      const auto               &t = bodies[b].modes;
+      std::vector<unsigned int> used;
+      for (unsigned int k = 0; k < n_modes; ++k)
+        if (t[k].linfty_norm() > 0)
+          used.push_back(k);
+      const unsigned int n = used.size();
+      if (n < 2)
+        return {};
+      LAPACKFullMatrix<double> G(n, n), N(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j <= i; ++j)
           {
-            // The joint motion of all bodies only when no body alone has
-            // that motion free (its springs hold the joint one too).
-            if (bodies.size() > 1 && b + 1 == bodies.size() &&
-                std::any_of(motions.begin(), motions.end(), [&](auto &m) {
-                  return m.mode == k;
-                }))
-              continue;
-            const auto &t = bodies[b].modes[k];
-            K.vmult(Kt, t);
-            double r_u = 0, r_m = 0;
+            double g = 0;
             for (const auto row : owned)
-              (row < n_u ? r_u : r_m) =
-                std::max(row < n_u ? r_u : r_m, std::abs(Kt[row]));
-            r_u                = Utilities::MPI::max(r_u, comm);
-            r_m                = Utilities::MPI::max(r_m, comm);
-            const double t_max = t.linfty_norm();
-            if (t_max == 0)
-              continue;
-            if (r_u <= 1e-8 * scale_u * t_max && r_m <= 1e-8 * scale_m * t_max)
-              motions.push_back({b, k});
+              {
+                const double s = row < n_u ? scale_u : scale_m;
+                if (s > 0)
+                  g += Kt[used[i]][row] * Kt[used[j]][row] / (s * s);
+              }
+            g       = Utilities::MPI::sum(g, comm);
+            G(i, j) = G(j, i) = g;
+            N(i, j) = N(j, i) = t[used[i]] * t[used[j]];
+          }
+      std::vector<Vector<double>> alpha(n, Vector<double>(n));
+      try
+        {
+          G.compute_generalized_eigenvalues_symmetric(N, alpha);
+        }
+      catch (const ExceptionBase &)
+        {
+          return {}; // N singular: the modes are not independent here
+        }
+      std::vector<Motion> motions;
+      for (unsigned int i = 0; i < n; ++i)
+        if (G.eigenvalue(i).real() <= 1e-16)
+          {
+            // Largest weight 1, at the mode named for the pin.
+            unsigned int largest = 0;
+            for (unsigned int k = 1; k < n; ++k)
+              if (std::abs(alpha[i][k]) > std::abs(alpha[i][largest]))
+                largest = k;
+            Motion m{b, used[largest], std::vector<double>(n_modes, 0.)};
+            for (unsigned int k = 0; k < n; ++k)
+              m.weights[used[k]] = alpha[i][k] / alpha[i][largest];
+            motions.push_back(std::move(m));
           }
       return motions;
     }
@@ -328,7 +403,33 @@ namespace Signorini
             text << (d ? ", " : "") << std::setprecision(4) << body.centroid[d];
           text << "))";
         }
-      text << ": " << rigid_mode_name<dim>(mode_ids[motion.mode]);
+      if (motion.weights.empty())
+        {
+          text << ": " << rigid_mode_name<dim>(mode_ids[motion.mode]);
+          return text.str();
+        }
+      // A combination: its translation and rotation parts.
+      Tensor<1, dim>              translation;
+      Tensor<1, dim == 2 ? 1 : 3> rotation;
+      for (unsigned int k = 0; k < n_modes; ++k)
+        (mode_ids[k] < dim ? translation[mode_ids[k]] :
+                             rotation[mode_ids[k] - dim]) += motion.weights[k];
+      const auto vector = [](const auto &v) {
+        std::ostringstream out;
+        out << "(";
+        for (unsigned int d = 0; d < v.dimension; ++d)
+          out << (d ? ", " : "") << std::setprecision(4)
+              << (std::abs(v[d]) < 1e-6 * v.norm() ? 0. : v[d]);
+        out << ")";
+        return out.str();
+      };
+      const double size = std::max(translation.norm(), rotation.norm());
+      if (rotation.norm() <= 1e-6 * size)
+        text << ": rigid translation along " << vector(translation / size);
+      else
+        text << ": a rigid motion combining the translation "
+             << vector(translation) << " and the rotation " << vector(rotation)
+             << " about its centre";
       return text.str();
     }
 

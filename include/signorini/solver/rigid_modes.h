@@ -67,10 +67,15 @@ namespace Signorini
     class RigidModes
     {
     public:
+      /** Mode @p mode of body @p body; with @p weights, the combination
+       * sum_k weights[k] t_k of the body's modes (largest |weight| 1, at
+       * @p mode): a motion that no single mode is, e.g. a translation
+       * along an inclined roller. */
       struct Motion
       {
-        unsigned int body;
-        unsigned int mode;
+        unsigned int        body;
+        unsigned int        mode;
+        std::vector<double> weights;
       };
 
       /**
@@ -88,7 +93,10 @@ namespace Signorini
             const bool                       axisymmetric,
             const MPI_Comm                   comm);
 
-      /** The motions that @p K (u DoFs in [0, n_u)) does not hold. */
+      /** The motions that @p K (u DoFs in [0, n_u)) does not hold: single
+       * modes, or, for a body none of whose modes is free, combinations
+       * of them (the smallest eigenvectors of the body's modes' Gram
+       * matrix of K t against that of t). */
       std::vector<Motion>
       find(const TrilinosWrappers::SparseMatrix &K,
            const types::global_dof_index         n_u) const;
@@ -105,6 +113,15 @@ namespace Signorini
       describe(const Motion &motion) const;
 
     private:
+      /** The combinations of body @p b's modes that @p K does not hold,
+       * from the scaled K t_k (@p Kt) of each mode. */
+      std::vector<Motion>
+      find_combinations(const unsigned int                                b,
+                        const std::vector<TrilinosWrappers::MPI::Vector> &Kt,
+                        const types::global_dof_index                     n_u,
+                        const double scale_u,
+                        const double scale_m) const;
+
       /** Largest diagonal entry of the u rows, largest u coupling of the
        * multiplier rows. */
       std::pair<double, double>
