@@ -6,7 +6,10 @@
 #include <signorini/core/parameters.h>
 #include <signorini/core/simulation.h>
 
+#include <cstdlib>
 #include <iostream>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -22,19 +25,30 @@ namespace
            "                        and documentation (prm format)\n\n"
            "Run in parallel with: mpirun -np N signorini file.prm\n";
   }
+
+
+  // The rank under mpirun before MPI is started (OpenMPI, MPICH/PMI):
+  // only rank 0 prints the help.
+  bool
+  first_rank()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK"})
+      if (const char *rank = std::getenv(name))
+        return std::string(rank) == "0";
+    return true;
+  }
 } // namespace
 
 int
 main(int argc, char *argv[])
 {
   using namespace dealii;
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-
-  std::vector<std::string> args(argv + 1, argv + argc);
+  // Usage and the parameter list need no MPI: answered before MPI starts
+  // (its start-up was 0.3 of the 0.56 s of 'signorini --help').
+  const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "-h" || args[0] == "--help")
     {
-      if (root)
+      if (first_rank())
         print_usage(args.empty() ? std::cerr : std::cout);
       return args.empty() ? 1 : 0;
     }
@@ -45,16 +59,19 @@ main(int argc, char *argv[])
       counts.n_neumann = 1; // show one of each numbered subsection
       counts.n_pairs   = 1;
       Signorini::Parameters::declare_parameters(prm, counts);
-      if (root)
+      if (first_rank())
         prm.print_parameters(std::cout, ParameterHandler::PRM);
       return 0;
     }
   if (args.size() != 1 || args[0][0] == '-')
     {
-      if (root)
+      if (first_rank())
         print_usage(std::cerr);
       return 1;
     }
+
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
   try
     {
