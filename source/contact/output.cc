@@ -32,6 +32,27 @@ namespace Signorini
     using internal::add_entry;
     using internal::writable_vector;
 
+    namespace
+    {
+      // Records (points or nodes) by pair, then by reference position
+      // (lexicographic, equal within round-off): the same order on any
+      // number of ranks.
+      template <int dim, typename Record>
+      void
+      sort_by_pair_and_position(std::vector<Record> &records)
+      {
+        std::sort(
+          records.begin(), records.end(), [](const Record &a, const Record &b) {
+            if (a.pair != b.pair)
+              return a.pair < b.pair;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (std::abs(a.x[d] - b.x[d]) > 1e-12 * (1 + std::abs(a.x[d])))
+                return a.x[d] < b.x[d];
+            return false;
+          });
+      }
+    } // namespace
+
 
     template <int dim>
     Output<dim>::Output(const Parameters        &parameters,
@@ -190,17 +211,7 @@ namespace Signorini
       std::vector<PointRecord> records;
       for (const auto &part : Utilities::MPI::all_gather(comm, mine))
         records.insert(records.end(), part.begin(), part.end());
-      std::sort(records.begin(),
-                records.end(),
-                [](const PointRecord &a, const PointRecord &b) {
-                  if (a.pair != b.pair)
-                    return a.pair < b.pair;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    if (std::abs(a.x[d] - b.x[d]) >
-                        1e-12 * (1 + std::abs(a.x[d])))
-                      return a.x[d] < b.x[d];
-                  return false;
-                });
+      sort_by_pair_and_position<dim>(records);
       return records;
     }
 
@@ -286,17 +297,7 @@ namespace Signorini
       std::vector<NodeRecord> records;
       for (const auto &part : Utilities::MPI::gather(comm, mine, 0))
         records.insert(records.end(), part.begin(), part.end());
-      std::sort(records.begin(),
-                records.end(),
-                [](const NodeRecord &a, const NodeRecord &b) {
-                  if (a.pair != b.pair)
-                    return a.pair < b.pair;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    if (std::abs(a.x[d] - b.x[d]) >
-                        1e-12 * (1 + std::abs(a.x[d])))
-                      return a.x[d] < b.x[d];
-                  return false;
-                });
+      sort_by_pair_and_position<dim>(records);
       return records;
     }
 
