@@ -6,12 +6,31 @@
 #include <signorini/bulk/assembler.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace Signorini
 {
   namespace Bulk
   {
+    namespace
+    {
+      // Every entry of @p v and @p m is finite (deal.II's norms assert it
+      // in a Debug build instead of answering).
+      bool
+      all_finite(const Vector<double> &v, const FullMatrix<double> &m)
+      {
+        for (const double x : v)
+          if (!std::isfinite(x))
+            return false;
+        for (unsigned int i = 0; i < m.m(); ++i)
+          for (unsigned int j = 0; j < m.n(); ++j)
+            if (!std::isfinite(m(i, j)))
+              return false;
+        return true;
+      }
+    } // namespace
+
     template <int dim>
     Assembler<dim>::Assembler(
       const Parameters                                        &parameters,
@@ -213,15 +232,15 @@ namespace Signorini
 
     template <int dim>
     void
-    Assembler<dim>::assemble(
-      const DoFHandler<dim>               &dof_handler,
-      const TrilinosWrappers::MPI::Vector &solution,
-      const Material::History<dim>        &history,
-      const AffineConstraints<double>     &constraints,
-      TrilinosWrappers::SparseMatrix      *matrix,
-      TrilinosWrappers::MPI::Vector       &rhs,
-      TrilinosWrappers::MPI::Vector       &internal_force,
-      TrilinosWrappers::MPI::Vector       &external_force) const
+    Assembler<dim>::assemble(const DoFHandler<dim>               &dof_handler,
+                             const TrilinosWrappers::MPI::Vector &solution,
+                             const Material::History<dim>        &history,
+                             const AffineConstraints<double>     &constraints,
+                             TrilinosWrappers::SparseMatrix      *matrix,
+                             TrilinosWrappers::MPI::Vector       &rhs,
+                             TrilinosWrappers::MPI::Vector &internal_force,
+                             TrilinosWrappers::MPI::Vector &external_force,
+                             const LinearSystemRhs         *linear_system) const
     {
       const auto     fe_face_values = neumann_face_values();
       CellKinematics k(mapping, fe, cell_quadrature, parameters.axisymmetric);
@@ -270,7 +289,16 @@ namespace Signorini
             cell->get_dof_indices(dofs);
             for (unsigned int i = 0; i < n; ++i)
               cell_rhs(i) = cell_fext(i) - cell_fint(i);
-            if (matrix)
+            // A cell with a non-finite value (a NaN load, an inverted
+            // element) makes the residual non-finite, and Newton stops at
+            // it: its Jacobian is left out (deal.II's Debug build stops at
+            // a non-finite matrix entry).
+            const bool with_matrix =
+              matrix != nullptr && all_finite(cell_rhs, cell_matrix);
+            if (with_matrix && linear_system)
+              linear_system->constraints.distribute_local_to_global(
+                cell_matrix, cell_rhs, dofs, *matrix, linear_system->rhs);
+            if (with_matrix && !linear_system)
               constraints.distribute_local_to_global(
                 cell_matrix, cell_rhs, dofs, *matrix, rhs);
             else

@@ -99,6 +99,7 @@ namespace Signorini
     state.reinit(owned_system, relevant_system, mpi_communicator);
     state_step_start.reinit(owned_system, relevant_system, mpi_communicator);
     newton_rhs.reinit(owned_system, relevant_system, mpi_communicator, true);
+    bulk_rhs.reinit(owned_system, relevant_system, mpi_communicator, true);
     contact_force.reinit(locally_owned,
                          contact.active() ? relevant_system : locally_relevant,
                          mpi_communicator,

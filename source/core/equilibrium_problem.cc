@@ -60,7 +60,8 @@ namespace Signorini
   EquilibriumProblem<dim>::setup()
   {
     // A new mesh: no first update of the old one is pending.
-    first_update = nullptr;
+    first_update        = nullptr;
+    bulk_jacobian_ready = false;
     rigid_modes.setup(system.mapping,
                       system.dof_handler,
                       system.constraints_update,
@@ -74,6 +75,7 @@ namespace Signorini
   void
   EquilibriumProblem<dim>::start_solve()
   {
+    bulk_jacobian_ready = false;
     // rho_t follows the pressure level once per Newton solve: changing it
     // between iterates would change the equations being solved and spoil
     // the quadratic convergence.
@@ -89,7 +91,13 @@ namespace Signorini
   Solver::Evaluation
   EquilibriumProblem<dim>::evaluate(const bool trial)
   {
-    assemble(false, trial);
+    // A Newton iterate's evaluation also assembles the bulk Jacobian: the
+    // iterate's solve needs it unless the iterate converged, so a Newton
+    // solve of n iterations assembles the bulk n + 1 times (before: a
+    // residual at every iterate and again with the Jacobian for each
+    // solve, 2n + 1). A line-search trial needs its residual only.
+    assemble_bulk(!trial);
+    assemble_contact(false, system.constraints_update, !trial);
     Solver::Evaluation e;
     e.block = block_residuals();
     // A trial (line search) is judged by its residual norm alone.
@@ -205,7 +213,17 @@ namespace Signorini
             pcout << "    release extrapolation: " << n
                   << " point(s) opened for this solve" << std::endl;
         }
-    assemble(true);
+    if (!bulk_jacobian_ready)
+      assemble_bulk(true);
+    // Not newton_rhs = bulk_rhs: after that assignment the two ranks of
+    // tests/body_force_per_body_2d (one without contact terms) took
+    // different paths in the next compress() and the run hung.
+    system.newton_rhs = 0;
+    system.newton_rhs.add(1., system.bulk_rhs);
+    assemble_contact(true,
+                     first_update ? *first_update : system.constraints_update,
+                     false);
+    bulk_jacobian_ready = false; // the matrix now holds the contact terms
     if (contact.active())
       contact.clear_releases();
     matrix_roundoff = Solver::absolute_product_norm(system.matrix,
@@ -246,6 +264,7 @@ namespace Signorini
   {
     system.state = owned;
     system.update_solution();
+    bulk_jacobian_ready = false;
   }
 
 
@@ -271,32 +290,54 @@ namespace Signorini
   }
 
 
-  // Assembles -R = F_ext - F_int on the free DoFs into newton_rhs and,
+  // -R = F_ext - F_int of the bulk on the free DoFs into newton_rhs and,
   // without constraints, F_int and F_ext for reactions and the force scale.
   template <int dim>
   void
-  EquilibriumProblem<dim>::assemble(const bool with_matrix, const bool trial)
+  EquilibriumProblem<dim>::assemble_bulk(const bool with_jacobian)
   {
-    timer.enter_subsection("bulk assembly");
-    if (with_matrix)
-      system.matrix = 0;
+    TimerOutput::Scope t(timer, "bulk assembly");
     system.newton_rhs     = 0;
     system.internal_force = 0;
     system.external_force = 0;
-
     // The Jacobian of a first update that moves prescribed values carries
-    // their increments into the right-hand side (-K_fd delta).
-    const AffineConstraints<double> &constraints =
-      with_matrix && first_update ? *first_update : system.constraints_update;
+    // their increments into its right-hand side (-K_fd delta).
+    const typename Bulk::Assembler<dim>::LinearSystemRhs linear_system{
+      first_update ? *first_update : system.constraints_update,
+      system.bulk_rhs};
+    if (with_jacobian)
+      {
+        system.matrix   = 0;
+        system.bulk_rhs = 0;
+      }
     bulk.assemble(system.dof_handler,
                   system.solution,
                   system.history,
-                  constraints,
-                  with_matrix ? &system.matrix : nullptr,
+                  system.constraints_update,
+                  with_jacobian ? &system.matrix : nullptr,
                   system.newton_rhs,
                   system.internal_force,
-                  system.external_force);
-    timer.leave_subsection("bulk assembly");
+                  system.external_force,
+                  with_jacobian ? &linear_system : nullptr);
+    system.newton_rhs.compress(VectorOperation::add);
+    system.internal_force.compress(VectorOperation::add);
+    system.external_force.compress(VectorOperation::add);
+    if (with_jacobian)
+      {
+        system.matrix.compress(VectorOperation::add);
+        system.bulk_rhs.compress(VectorOperation::add);
+      }
+    bulk_jacobian_ready = with_jacobian;
+  }
+
+
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::assemble_contact(
+    const bool                       with_matrix,
+    const AffineConstraints<double> &constraints,
+    const bool                       new_iterate)
+  {
     system.contact_force = 0;
     if (contact.active())
       {
@@ -308,13 +349,11 @@ namespace Signorini
                            with_matrix ? &system.matrix : nullptr,
                            system.newton_rhs,
                            system.contact_force,
-                           !with_matrix && !trial);
+                           new_iterate);
       }
     if (with_matrix)
       system.matrix.compress(VectorOperation::add);
     system.newton_rhs.compress(VectorOperation::add);
-    system.internal_force.compress(VectorOperation::add);
-    system.external_force.compress(VectorOperation::add);
     system.contact_force.compress(VectorOperation::add);
   }
 

@@ -19,11 +19,14 @@ namespace Signorini
 
     template <int dim, int spacedim>
     void
-    VtuSeries::write(const DataOutInterface<dim, spacedim> &out,
-                     const unsigned int                     step,
-                     const double                           time,
-                     const MPI_Comm                         comm)
+    VtuSeries::write(DataOutInterface<dim, spacedim> &out,
+                     const unsigned int               step,
+                     const double                     time,
+                     const MPI_Comm                   comm)
     {
+      DataOutBase::VtkFlags flags;
+      flags.compression_level = DataOutBase::VtkFlags::best_speed;
+      out.set_flags(flags);
       const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
       const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
       const unsigned int digits =
@@ -63,22 +66,22 @@ namespace Signorini
 
 
     template void
-    VtuSeries::write(const DataOutInterface<1, 2> &,
+    VtuSeries::write(DataOutInterface<1, 2> &,
                      const unsigned int,
                      const double,
                      const MPI_Comm);
     template void
-    VtuSeries::write(const DataOutInterface<2, 2> &,
+    VtuSeries::write(DataOutInterface<2, 2> &,
                      const unsigned int,
                      const double,
                      const MPI_Comm);
     template void
-    VtuSeries::write(const DataOutInterface<2, 3> &,
+    VtuSeries::write(DataOutInterface<2, 3> &,
                      const unsigned int,
                      const double,
                      const MPI_Comm);
     template void
-    VtuSeries::write(const DataOutInterface<3, 3> &,
+    VtuSeries::write(DataOutInterface<3, 3> &,
                      const unsigned int,
                      const double,
                      const MPI_Comm);

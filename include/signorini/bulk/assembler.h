@@ -94,12 +94,24 @@ namespace Signorini
         const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann,
         const BodyForces<dim>                                   &body_forces);
 
+      /** The right-hand side of the linear system of a Jacobian whose
+       * constraints differ from those of the residual (a first update
+       * that moves prescribed values: -K_fd delta in @p rhs). */
+      struct LinearSystemRhs
+      {
+        const AffineConstraints<double> &constraints;
+        TrilinosWrappers::MPI::Vector   &rhs;
+      };
+
       /**
        * Adds F_ext - F_int of @p solution (ghosted) into @p rhs and the
        * Jacobian into @p matrix (if not null), through @p constraints; adds
        * F_int and F_ext into @p internal_force and @p external_force (no
        * constraints: the reactions are their sums at the Dirichlet DoFs).
-       * The models read their committed @p history.
+       * With @p linear_system, the Jacobian and F_ext - F_int once more go
+       * through its constraints, into @p matrix and its rhs: the residual
+       * and the linear system of a Newton iterate in one pass over the
+       * cells. The models read their committed @p history.
        */
       void
       assemble(const DoFHandler<dim>               &dof_handler,
@@ -109,7 +121,8 @@ namespace Signorini
                TrilinosWrappers::SparseMatrix      *matrix,
                TrilinosWrappers::MPI::Vector       &rhs,
                TrilinosWrappers::MPI::Vector       &internal_force,
-               TrilinosWrappers::MPI::Vector       &external_force) const;
+               TrilinosWrappers::MPI::Vector       &external_force,
+               const LinearSystemRhs *linear_system = nullptr) const;
 
       /** F_ext alone (the Neumann loads and, @p with_body_force, the body
        * force, at the time of the functions) into @p external_force (owned;

@@ -112,6 +112,9 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector  state;            // ghosted system iterate
     TrilinosWrappers::MPI::Vector  state_step_start; // ghosted, step start
     TrilinosWrappers::MPI::Vector  newton_rhs;       // -R on free DoFs
+    // The bulk part of the right-hand side of the next linear solve (-R,
+    // with -K_fd delta in a first update), assembled with the residual.
+    TrilinosWrappers::MPI::Vector bulk_rhs;
     // Without constraints, on u DoFs [N].
     TrilinosWrappers::MPI::Vector internal_force, external_force;
     TrilinosWrappers::MPI::Vector contact_force;

@@ -50,12 +50,6 @@ namespace Signorini
     void
     setup();
 
-    /** Residual (and with @p with_matrix the Jacobian) at the iterate.
-     * A residual-only evaluation is a new Newton iterate for the status
-     * history unless @p trial (line search). */
-    void
-    assemble(const bool with_matrix, const bool trial = false);
-
     /** Status counts of the last evaluation. */
     const Contact::ContactStatistics &
     statistics() const
@@ -69,7 +63,8 @@ namespace Signorini
     void
     impose_in_first_update(const AffineConstraints<double> *constraints)
     {
-      first_update = constraints;
+      first_update        = constraints;
+      bulk_jacobian_ready = false;
     }
 
     /** Every material is linear without history (Newton's step at fixed
@@ -118,6 +113,21 @@ namespace Signorini
   private:
     struct IterateSnapshot;
 
+    /** The bulk residual into newton_rhs (with F_int, F_ext); with
+     * @p with_jacobian in the same pass the bulk Jacobian into the matrix
+     * and its right-hand side into bulk_rhs, through the constraints of
+     * the next solve (a pending first update). */
+    void
+    assemble_bulk(const bool with_jacobian);
+    /** The contact terms at the iterate into newton_rhs (and the matrix
+     * if @p with_matrix), through @p constraints. @p new_iterate: the
+     * statuses are updated for the status history (not for a line-search
+     * trial nor for the Jacobian of a solve). */
+    void
+    assemble_contact(const bool                       with_matrix,
+                     const AffineConstraints<double> &constraints,
+                     const bool                       new_iterate);
+
     /** Norms of the u, lambda and Lambda blocks of newton_rhs. */
     std::array<double, 3>
     block_residuals() const;
@@ -147,8 +157,12 @@ namespace Signorini
     bool materials_linear = true;
     // The constraints of a pending first update (impose_in_first_update).
     const AffineConstraints<double> *first_update = nullptr;
-    Solver::RigidModes<dim>          rigid_modes;
-    Contact::ContactStatistics       contact_statistics;
+    // The matrix holds the bulk Jacobian of the current iterate (and
+    // bulk_rhs its right-hand side): assembled by the iterate's evaluation,
+    // used by its linear solve.
+    bool                       bulk_jacobian_ready = false;
+    Solver::RigidModes<dim>    rigid_modes;
+    Contact::ContactStatistics contact_statistics;
     // || |K| |x| || of the last Jacobian K at the state x it was assembled
     // at: the round-off scale of the internal force (evaluate()).
     double matrix_roundoff    = 0;

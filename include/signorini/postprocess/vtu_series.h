@@ -32,13 +32,17 @@ namespace Signorini
       /** @p directory: 'Output/Directory'; @p stem: the file name stem. */
       VtuSeries(const std::string &directory, const std::string &stem);
 
-      /** Collective: writes the patches of @p out as load step @p step. */
+      /**
+       * Collective: writes the patches of @p out as load step @p step, with
+       * zlib's fastest level (the best level took 3.5 times as long, 0.071
+       * against 0.020 s on a 5.5k-DoF 2D run, for files 3 % smaller).
+       */
       template <int dim, int spacedim>
       void
-      write(const DataOutInterface<dim, spacedim> &out,
-            const unsigned int                     step,
-            const double                           time,
-            const MPI_Comm                         comm);
+      write(DataOutInterface<dim, spacedim> &out,
+            const unsigned int               step,
+            const double                     time,
+            const MPI_Comm                   comm);
 
     private:
       std::string                                 directory;
