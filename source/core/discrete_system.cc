@@ -69,6 +69,7 @@ namespace Signorini
                              Solver::LinearSolver<dim>     &linear_solver,
                              ConditionalOStream            &pcout)
   {
+    mapping.initialize(MappingQ<dim>(fe.degree), triangulation);
     dof_handler.distribute_dofs(fe);
     DoFRenumbering::Cuthill_McKee(dof_handler);
     locally_owned = dof_handler.locally_owned_dofs();

@@ -151,7 +151,10 @@ namespace Signorini
     prm.declare_entry("Integration order",
                       "2",
                       Patterns::Integer(1, 12),
-                      "Order of the gauss, simpson or newton-cotes rule.");
+                      "Order of the gauss, simpson or newton-cotes rule. "
+                      "gauss and newton-cotes need as many points per face "
+                      "direction as a face has multiplier nodes (Q1: gauss "
+                      ">= 2; Q2: gauss >= 3, newton-cotes >= 2).");
     prm.declare_entry("Initial status",
                       "penetrating",
                       initial_statuses.pattern(),

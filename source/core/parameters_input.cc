@@ -228,6 +228,25 @@ namespace Signorini
                        "the newton-cotes rule exists for orders 1, 2, 4 and 6 "
                        "(trapezoid, Simpson, Milne, Weddle), not " +
                        std::to_string(c.order) + ".");
+    // A face of degree k carries k + 1 multiplier nodes per direction: a
+    // rule with fewer points per face direction leaves a combination of
+    // them untied, and the tangent is singular (MUMPS: a null pivot).
+    const bool         gauss  = c.rule == IntegrationRule::gauss;
+    const unsigned int points = gauss ? c.order : c.order + 1;
+    if (!c.pairs.empty() && fe_degree <= 2 &&
+        (gauss || c.rule == IntegrationRule::newton_cotes) &&
+        points < fe_degree + 1)
+      throw InputError(
+        "subsection 'Contact', parameter 'Integration order': the " +
+        std::string(gauss ? "gauss" : "newton-cotes") + " rule of order " +
+        std::to_string(c.order) + " has " + std::to_string(points) +
+        " point(s) per face direction, fewer than the " +
+        std::to_string(fe_degree + 1) + " multiplier nodes of a Q" +
+        std::to_string(fe_degree) +
+        " face: the contact tangent would be singular. Set 'Integration "
+        "order' to at least " +
+        std::to_string(gauss ? fe_degree + 1 : fe_degree) +
+        " (or use the mortar or nodal rule).");
     if (axisymmetric && dimension != 2)
       throw InputError("parameter 'Axisymmetric': an axisymmetric model is a "
                        "2D meridian section; set 'Dimension = 2' or "

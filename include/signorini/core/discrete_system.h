@@ -7,6 +7,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/fe/mapping_q_cache.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -94,8 +95,11 @@ namespace Signorini
     // The geometry of the cells: polynomials of the element's degree
     // through its support points (isoparametric), so that the nodes of a
     // Q2 element follow a curved boundary (its manifold).
-    const MappingQ<dim> mapping;
-    DoFHandler<dim>     dof_handler;
+    // The isoparametric mapping of the reference mesh. Its support points
+    // are computed through the manifolds once per mesh (setup()); a plain
+    // MappingQ(2) computed them at every FEValues::reinit().
+    MappingQCache<dim> mapping;
+    DoFHandler<dim>    dof_handler;
     // Displacement DoFs, and the system's (with the multipliers).
     IndexSet locally_owned, locally_relevant;
     IndexSet owned_system, relevant_system;
