@@ -145,7 +145,9 @@ namespace Signorini
       std::string              where;
       std::vector<std::string> expressions;
       std::vector<std::string> labels;
-      bool                     time_dependent = true;
+      // The variable after x, y(, z): the time t, the refinement cycle of
+      // 'Refinement region', or none ("").
+      std::string time_variable = "t";
     };
 
     // Component names x, y, z (then numbers) for @p n expressions.
@@ -183,13 +185,13 @@ namespace Signorini
     std::string
     expression_problem(const std::string                   &expression,
                        const std::map<std::string, double> &constants,
-                       const bool                           time_dependent)
+                       const std::string                   &time_variable)
     {
       if (Utilities::trim(expression).empty())
         return "the expression is empty (two ';' in a row?)";
       std::string variables = dim == 2 ? "x,y" : "x,y,z";
-      if (time_dependent)
-        variables += ",t";
+      if (!time_variable.empty())
+        variables += "," + time_variable;
       CerrCapture silence; // the reason goes into the InputError
       try
         {
@@ -197,7 +199,7 @@ namespace Signorini
           f.initialize(variables,
                        std::vector<std::string>{expression},
                        constants,
-                       time_dependent);
+                       !time_variable.empty());
           f.value(Point<dim>(), 0);
         }
       catch (const ExceptionBase &e)
@@ -223,7 +225,7 @@ namespace Signorini
           const std::string problem =
             expression_problem<dim>(input.expressions[i],
                                     constants,
-                                    input.time_dependent);
+                                    input.time_variable);
           if (problem.empty())
             continue;
           const std::string label =
@@ -234,7 +236,7 @@ namespace Signorini
                     "";
           const std::string variables =
             std::string(dim == 2 ? "x, y" : "x, y, z") +
-            (input.time_dependent ? ", t" : "");
+            (input.time_variable.empty() ? "" : ", " + input.time_variable);
           throw InputError(input.where + component + ": cannot evaluate '" +
                            input.expressions[i] + "': " + problem +
                            ". Expressions are in the variables " + variables +
@@ -323,7 +325,7 @@ namespace Signorini
       inputs.push_back({"subsection 'Geometry', parameter 'Refinement region'",
                         {parameters.geometry.refinement_region},
                         {""},
-                        false});
+                        "cycle"});
       return inputs;
     }
 

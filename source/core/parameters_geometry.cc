@@ -227,10 +227,15 @@ namespace Signorini
     prm.declare_entry("Refinement region",
                       "0",
                       Patterns::Anything(),
-                      "Expression in x, y(, z) and 'Function constants': a "
-                      "cell is refined in each local cycle iff it is > 0 at "
-                      "the cell centre or at one of its vertices, e.g. "
-                      "'0.02 - sqrt(x^2 + y^2)'.");
+                      "Expression in x, y(, z), the local cycle 'cycle' (1, "
+                      "2, ...) and 'Function constants': a cell is refined "
+                      "in a local cycle iff it is > 0 at the cell centre or "
+                      "at one of its vertices, e.g. '0.02 - sqrt(x^2 + y^2)' "
+                      "(a disc refined in every cycle). A region that "
+                      "shrinks with the cycle grades the mesh, e.g. '0.006 "
+                      "+ 0.04 / 2^cycle - sqrt(x^2 + y^2)': about as many "
+                      "cells of each size around a 6 mm disc of the finest "
+                      "ones.");
     prm.declare_entry(
       "Maximum number of cells",
       "1000000",

@@ -663,9 +663,10 @@ namespace Signorini
           FunctionParser<dim> region(1);
           try
             {
-              region.initialize(dim == 2 ? "x,y" : "x,y,z",
+              region.initialize(dim == 2 ? "x,y,cycle" : "x,y,z,cycle",
                                 geometry.refinement_region,
-                                parameters.boundary_conditions.constants);
+                                parameters.boundary_conditions.constants,
+                                true);
               region.value(Point<dim>());
             }
           catch (const ExceptionBase &e)
@@ -675,12 +676,15 @@ namespace Signorini
                 "cannot parse '" +
                 geometry.refinement_region + "'. Give an expression in x, y" +
                 std::string(dim == 3 ? ", z" : "") +
-                " (and 'Function constants'), positive where cells are to be "
-                "refined.");
+                ", the cycle number 'cycle' (1, 2, ...) and 'Function "
+                "constants', positive where cells are to be refined.");
             }
           for (unsigned int cycle = 0; cycle < geometry.local_refinements;
                ++cycle)
             {
+              // The region of this cycle: one that shrinks with 'cycle'
+              // grades the mesh.
+              region.set_time(cycle + 1);
               // A cell touches the region if the expression is positive at
               // its centre or at one of its vertices, so that a region
               // smaller than the coarse cells still gets refined.
