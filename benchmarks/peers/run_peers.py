@@ -38,6 +38,8 @@ VARIANTS = [
      [(3, h, 0.05) for h in (1.28e-3, 6.4e-4, 3.2e-4, 1.6e-4, 8e-5, 4e-5)]),
     ("Signorini", "Q1", "local, disc 12 mm",
      [(3, 3), (3, 4), (4, 4), (4, 5), (5, 5), (5, 6)]),
+    ("Signorini", "Q1", "local, graded 6 mm",
+     [(4, l) for l in (2, 3, 4, 5, 6, 7)]),
     ("GetFEM", "P2", "graded 0.4",
      [(3, h, 0.4) for h in (2.56e-3, 1.28e-3, 6.4e-4, 3.2e-4, 1.6e-4, 8e-5)]),
     ("Signorini", "Q2", "local, disc 5.5 mm",
@@ -46,6 +48,7 @@ VARIANTS = [
      [(3, c) for c in (2, 3, 4, 5, 6, 7)]),
 ]
 DISC = {"local, disc 12 mm": "0.012 - sqrt(x^2 + y^2)",
+        "local, graded 6 mm": "0.006 + 0.04 / 2^cycle - sqrt(x^2 + y^2)",
         "local, disc 5.5 mm": "0.0055 - sqrt(x^2 + y^2)"}
 
 P0_TARGET, A_TARGET = 5e-4, 5e-3
