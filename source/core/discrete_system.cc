@@ -135,6 +135,7 @@ namespace Signorini
     // The direct solver's analysis refers to the old matrix: dropped first.
     linear_solver.pattern_changed();
     matrix.reinit(sp);
+    ++layout_count;
   }
 
 
@@ -145,6 +146,7 @@ namespace Signorini
     Bulk::BoundaryConditions<dim>      &boundary_conditions,
     const Contact::ContactProblem<dim> &contact)
   {
+    ++layout_count;
     constraints_values.clear();
     constraints_values.reinit(relevant_system);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints_values);

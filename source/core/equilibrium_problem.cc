@@ -52,6 +52,7 @@ namespace Signorini
   {
     for (const auto &[id, material] : materials)
       materials_linear &= material->is_linear();
+    linear_solver.set_bulk_linear(materials_linear);
   }
 
 
@@ -305,7 +306,12 @@ namespace Signorini
     const typename Bulk::Assembler<dim>::LinearSystemRhs linear_system{
       first_update ? *first_update : system.constraints_update,
       system.bulk_rhs};
-    if (with_jacobian)
+    // A first update's right-hand side holds -K_fd delta: assembled.
+    const bool kept = with_jacobian && materials_linear &&
+                      first_update == nullptr &&
+                      linear_bulk_layout == system.layout_count;
+    const bool assemble_jacobian = with_jacobian && !kept;
+    if (assemble_jacobian)
       {
         system.matrix   = 0;
         system.bulk_rhs = 0;
@@ -314,18 +320,34 @@ namespace Signorini
                   system.solution,
                   system.history,
                   system.constraints_update,
-                  with_jacobian ? &system.matrix : nullptr,
+                  assemble_jacobian ? &system.matrix : nullptr,
                   system.newton_rhs,
                   system.internal_force,
                   system.external_force,
-                  with_jacobian ? &linear_system : nullptr);
+                  assemble_jacobian ? &linear_system : nullptr);
     system.newton_rhs.compress(VectorOperation::add);
     system.internal_force.compress(VectorOperation::add);
     system.external_force.compress(VectorOperation::add);
-    if (with_jacobian)
+    if (assemble_jacobian)
       {
         system.matrix.compress(VectorOperation::add);
         system.bulk_rhs.compress(VectorOperation::add);
+        // The constraints of a first update differ from the homogeneous
+        // ones in their inhomogeneities only, which reach the right-hand
+        // side only: the matrix is the same.
+        if (materials_linear)
+          {
+            linear_bulk_matrix.copy_from(system.matrix);
+            linear_bulk_layout = system.layout_count;
+          }
+      }
+    else if (kept)
+      {
+        // Without a first update the Jacobian's right-hand side is the
+        // residual's (the same homogeneous constraints).
+        system.matrix.copy_from(linear_bulk_matrix);
+        system.bulk_rhs = 0;
+        system.bulk_rhs.add(1., system.newton_rhs);
       }
     bulk_jacobian_ready = with_jacobian;
   }

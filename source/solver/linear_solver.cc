@@ -42,6 +42,9 @@ namespace Signorini
                                       const DoFHandler<dim> &dof_handler,
                                       const IndexSet        &locally_owned)
     {
+      // New DoFs: a kept hierarchy is of the old ones.
+      kept_amg.reset();
+      kept_A.reset();
       owned = locally_owned;
       if (parameters.type == LinearSolverType::direct)
         return;
@@ -85,6 +88,14 @@ namespace Signorini
 
     template <int dim>
     void
+    LinearSolver<dim>::set_bulk_linear(const bool linear)
+    {
+      bulk_linear = linear;
+    }
+
+
+    template <int dim>
+    void
     LinearSolver<dim>::initialize_amg(TrilinosWrappers::PreconditionAMG    &amg,
                                       const TrilinosWrappers::SparseMatrix &A)
     {
@@ -92,7 +103,7 @@ namespace Signorini
       data.elliptic              = true;
       data.higher_order_elements = true;
       data.smoother_sweeps       = 2;
-      data.aggregation_threshold = 0.02;
+      data.aggregation_threshold = 0.003;
       Teuchos::ParameterList              ml_list;
       std::unique_ptr<Epetra_MultiVector> translations;
       data.set_parameters(ml_list, translations, A);
@@ -310,8 +321,11 @@ namespace Signorini
     void
     LinearSolver<dim>::pattern_changed()
     {
-      kept_amg.reset();
-      kept_A.reset();
+      if (!bulk_linear)
+        {
+          kept_amg.reset();
+          kept_A.reset();
+        }
       direct_solver.reset();
       direct_problem.reset();
       analysed_matrix = nullptr;

@@ -112,10 +112,14 @@ namespace Signorini
     AffineConstraints<double> constraints_first;
 
     TrilinosWrappers::SparseMatrix matrix;
-    TrilinosWrappers::MPI::Vector  solution;         // ghosted u of the iterate
-    TrilinosWrappers::MPI::Vector  state;            // ghosted system iterate
-    TrilinosWrappers::MPI::Vector  state_step_start; // ghosted, step start
-    TrilinosWrappers::MPI::Vector  newton_rhs;       // -R on free DoFs
+    // Counts the changes of the matrix layout and of the constraints
+    // (make_sparsity(), make_constraints()): a bulk matrix assembled at
+    // one count is the bulk matrix of a linear bulk while the count stays.
+    unsigned int                  layout_count = 0;
+    TrilinosWrappers::MPI::Vector solution;         // ghosted u of the iterate
+    TrilinosWrappers::MPI::Vector state;            // ghosted system iterate
+    TrilinosWrappers::MPI::Vector state_step_start; // ghosted, step start
+    TrilinosWrappers::MPI::Vector newton_rhs;       // -R on free DoFs
     // The bulk part of the right-hand side of the next linear solve (-R,
     // with -K_fd delta in a first update), assembled with the residual.
     TrilinosWrappers::MPI::Vector bulk_rhs;

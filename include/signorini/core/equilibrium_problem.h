@@ -160,8 +160,14 @@ namespace Signorini
     // The matrix holds the bulk Jacobian of the current iterate (and
     // bulk_rhs its right-hand side): assembled by the iterate's evaluation,
     // used by its linear solve.
-    bool                       bulk_jacobian_ready = false;
-    Solver::RigidModes<dim>    rigid_modes;
+    bool bulk_jacobian_ready = false;
+    // A linear bulk's Jacobian (materials_linear) does not change from one
+    // iterate to the next: the first one assembled at a layout count of
+    // the system is kept here and copied into the matrix while the count
+    // stays, and the later evaluations assemble the residual only.
+    TrilinosWrappers::SparseMatrix linear_bulk_matrix;
+    unsigned int            linear_bulk_layout = numbers::invalid_unsigned_int;
+    Solver::RigidModes<dim> rigid_modes;
     Contact::ContactStatistics contact_statistics;
     // || |K| |x| || of the last Jacobian K at the state x it was assembled
     // at: the round-off scale of the internal force (evaluate()).

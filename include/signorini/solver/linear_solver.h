@@ -66,10 +66,23 @@ namespace Signorini
        * The sparsity pattern of the system matrix was rebuilt (new DoFs, a
        * new pairing): the next direct solve analyses the matrix again
        * (ordering, symbolic factorisation). Until then, a direct solve only
-       * refactorises the new values of the same pattern.
+       * refactorises the new values of the same pattern. The AMG hierarchy
+       * of the displacement block is rebuilt too, unless the bulk is
+       * linear (set_bulk_linear()) and the DoFs stayed.
        */
       void
       pattern_changed();
+
+      /**
+       * @p linear: the bulk stiffness does not depend on the iterate (every
+       * material linear, small strain). A new pattern on the same DoFs then
+       * changes only the contact terms of the displacement block, and the
+       * AMG hierarchy built on its first matrix is kept until the DoFs
+       * change (set_null_space()), as it is kept across the Newton
+       * iterations of one pattern.
+       */
+      void
+      set_bulk_linear(const bool linear);
 
       /** Solves A x = b; returns the Krylov iterations (0 for direct).
        * Throws LinearSolveError where the factorisation or the Krylov solve
@@ -94,7 +107,9 @@ namespace Signorini
       std::unique_ptr<Amesos_BaseSolver>    direct_solver;
       const void                           *analysed_matrix = nullptr;
       // Contact systems with GMRES: the u block of the first matrix of the
-      // pattern and its AMG hierarchy (destroyed before it).
+      // pattern (of the DoFs if the bulk is linear) and its AMG hierarchy
+      // (destroyed before it).
+      bool                                               bulk_linear = false;
       std::unique_ptr<TrilinosWrappers::SparseMatrix>    kept_A;
       std::unique_ptr<TrilinosWrappers::PreconditionAMG> kept_amg;
 
