@@ -303,10 +303,9 @@ namespace Signorini
             << std::endl;
       // A frozen status (anti-cycling) that the plain law contradicts at
       // the converged iterate is released; Newton goes on from there.
-      verdict.release =
-        residual_small && statuses_settled && evaluation.frozen_contradicted;
-      verdict.converged = residual_small && statuses_settled &&
-                          !verdict.release && !evaluation.values_pending;
+      verdict.release = residual_small && evaluation.frozen_contradicted;
+      verdict.converged =
+        residual_small && !verdict.release && !evaluation.values_pending;
       return verdict;
     }
 
