@@ -18,6 +18,8 @@
 #include <signorini/core/errors.h>
 #include <signorini/solver/linear_solver.h>
 
+#include <algorithm>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -205,14 +207,12 @@ namespace Signorini
                             TrilinosWrappers::SolverDirect          &schur,
                             const IndexSet                          &owned_u,
                             const IndexSet                          &owned_m,
-                            const types::global_dof_index            n_u,
                             const MPI_Comm                           comm)
             : amg(amg)
             , C(C)
             , schur(schur)
             , owned_u(owned_u)
             , owned_m(owned_m)
-            , n_u(n_u)
             , f(owned_u, comm)
             , y(owned_u, comm)
             , g(owned_m, comm)
@@ -220,24 +220,28 @@ namespace Signorini
         {
         }
 
+        // A system vector holds this rank's u entries first and its
+        // multipliers after them (the owned system indices are sorted and
+        // the u indices come first), so the blocks are copied as the two
+        // contiguous parts of the local array, without global lookups.
         void
         vmult(TrilinosWrappers::MPI::Vector       &dst,
               const TrilinosWrappers::MPI::Vector &src) const
         {
-          for (const auto i : owned_u)
-            f[i] = src[i];
-          f.compress(VectorOperation::insert);
+          const auto n_owned_u = owned_u.n_elements();
+          AssertDimension(src.locally_owned_size(),
+                          n_owned_u + owned_m.n_elements());
+          std::copy(src.begin(), src.begin() + n_owned_u, f.begin());
           amg.vmult(y, f);
           C.vmult(g, y); // g = C y
-          for (const auto i : owned_m)
-            g[i] = src[n_u + i] - g[i];
-          g.compress(VectorOperation::insert);
+          std::transform(src.begin() + n_owned_u,
+                         src.end(),
+                         g.begin(),
+                         g.begin(),
+                         std::minus<double>());
           schur.solve(z, g);
-          for (const auto i : owned_u)
-            dst[i] = y[i];
-          for (const auto i : owned_m)
-            dst[n_u + i] = z[i];
-          dst.compress(VectorOperation::insert);
+          std::copy(y.begin(), y.end(), dst.begin());
+          std::copy(z.begin(), z.end(), dst.begin() + n_owned_u);
         }
 
       private:
@@ -245,7 +249,6 @@ namespace Signorini
         const TrilinosWrappers::SparseMatrix    &C;
         TrilinosWrappers::SolverDirect          &schur;
         const IndexSet                          &owned_u, &owned_m;
-        const types::global_dof_index            n_u;
         mutable TrilinosWrappers::MPI::Vector    f, y, g, z;
       };
     } // namespace
@@ -305,7 +308,7 @@ namespace Signorini
       TrilinosWrappers::SolverDirect schur(schur_control, schur_data);
       schur.initialize(S);
       const BlockPreconditioner preconditioner(
-        *kept_amg, C, schur, owned, owned_m, n_u, comm);
+        *kept_amg, C, schur, owned, owned_m, comm);
 
       SolverControl control(parameters.max_iterations,
                             parameters.relative_tolerance * b.l2_norm());
