@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 
 namespace Signorini
 {
@@ -301,20 +302,27 @@ namespace Signorini
     system.newton_rhs     = 0;
     system.internal_force = 0;
     system.external_force = 0;
-    // The Jacobian of a first update that moves prescribed values carries
-    // their increments into its right-hand side (-K_fd delta).
-    const typename Bulk::Assembler<dim>::LinearSystemRhs linear_system{
-      first_update ? *first_update : system.constraints_update,
-      system.bulk_rhs};
-    // A first update's right-hand side holds -K_fd delta: assembled.
+    // A linear bulk's Jacobian is kept per layout; a first update's pass
+    // assembles it anyway, as its right-hand side holds -K_fd delta.
     const bool kept = with_jacobian && materials_linear &&
                       first_update == nullptr &&
                       linear_bulk_layout == system.layout_count;
     const bool assemble_jacobian = with_jacobian && !kept;
     if (assemble_jacobian)
+      system.matrix = 0;
+    // The Jacobian's right-hand side: a first update that moves prescribed
+    // values distributes the cell residuals once more, through its own
+    // constraints, carrying the increments into it (-K_fd delta);
+    // otherwise it is the residual itself (the same homogeneous
+    // constraints), copied below.
+    std::optional<typename Bulk::Assembler<dim>::LinearSystemRhs>
+      first_update_rhs;
+    if (assemble_jacobian && first_update)
       {
-        system.matrix   = 0;
         system.bulk_rhs = 0;
+        first_update_rhs.emplace(
+          typename Bulk::Assembler<dim>::LinearSystemRhs{*first_update,
+                                                         system.bulk_rhs});
       }
     bulk.assemble(system.dof_handler,
                   system.solution,
@@ -324,14 +332,13 @@ namespace Signorini
                   system.newton_rhs,
                   system.internal_force,
                   system.external_force,
-                  assemble_jacobian ? &linear_system : nullptr);
+                  first_update_rhs ? &*first_update_rhs : nullptr);
     system.newton_rhs.compress(VectorOperation::add);
     system.internal_force.compress(VectorOperation::add);
     system.external_force.compress(VectorOperation::add);
     if (assemble_jacobian)
       {
         system.matrix.compress(VectorOperation::add);
-        system.bulk_rhs.compress(VectorOperation::add);
         // The constraints of a first update differ from the homogeneous
         // ones in their inhomogeneities only, which reach the right-hand
         // side only: the matrix is the same.
@@ -341,11 +348,12 @@ namespace Signorini
             linear_bulk_layout = system.layout_count;
           }
       }
-    else if (kept)
+    if (kept)
+      system.matrix.copy_from(linear_bulk_matrix);
+    if (first_update_rhs)
+      system.bulk_rhs.compress(VectorOperation::add);
+    else if (with_jacobian)
       {
-        // Without a first update the Jacobian's right-hand side is the
-        // residual's (the same homogeneous constraints).
-        system.matrix.copy_from(linear_bulk_matrix);
         system.bulk_rhs = 0;
         system.bulk_rhs.add(1., system.newton_rhs);
       }
