@@ -477,22 +477,26 @@ namespace Signorini
           ++c.cycles;
           stats.n_cycling += owned;
         }
-      // Frozen from the next evaluation on, slipping along the last slip
-      // direction of the cycle (the cycle went through stick, or reversed:
-      // then the current one).
+      // Frozen from the next evaluation on, as a point is
+      // (freeze_for_cycle()): a cycle through stick slips along its slip
+      // direction; a slip direction that reverses sticks (the slip changes
+      // sign from iterate to iterate: the node is at zero slip).
       if (back && c.cycles >= freeze_after && !c.was_frozen && used.active)
         {
+          const bool reversed =
+            !used.stick && previous && previous->active && !previous->stick;
           const Tensor<1, dim - 1> h =
             !used.stick ? used.H :
                           (previous && previous->active && !previous->stick ?
                              previous->H :
                              Tensor<1, dim - 1>());
-          if (h.norm() > 0)
+          if (reversed || h.norm() > 0)
             {
               c.was_frozen   = true;
               c.freeze       = true;
-              c.freeze_stick = false;
-              c.q            = h / h.norm();
+              c.freeze_stick = reversed;
+              if (!reversed)
+                c.q = h / h.norm();
               stats.n_newly_frozen += owned;
             }
         }

@@ -65,9 +65,18 @@ namespace Signorini
       r.friction_active = false;
       if (r.in_contact && friction_node_pair[face.pair])
         {
-          // Labelled with the friction status of the same node; the
-          // friction force and rows are the assembly's (per node).
-          const auto &nf    = node_friction.at(face.lambda_dofs[nearest]);
+          // Labelled with the friction status of the nearest node with
+          // friction (a node excluded from friction has none: a point
+          // between it and another node takes the other's, whatever the
+          // round-off of psi); the friction force and rows are the
+          // assembly's (per node).
+          auto labelled = nearest;
+          for (unsigned int l = 0; l < point.psi.size(); ++l)
+            if (!face.excluded_friction[l] && point.psi[l] > 0 &&
+                (face.excluded_friction[labelled] ||
+                 point.psi[l] > point.psi[labelled]))
+              labelled = l;
+          const auto &nf    = node_friction.at(face.lambda_dofs[labelled]);
           r.friction_active = nf.active;
           if (nf.active && nf.stick)
             r.status = PointStatus::stick;
@@ -207,7 +216,7 @@ namespace Signorini
               if (!seen.insert(dof).second)
                 continue;
               NodeFriction<dim> nf;
-              nf.active = node_active.at(dof) &&
+              nf.active = node_active.at(dof) && !face.excluded_friction[l] &&
                           std::abs(state[dof]) > law.zero_threshold &&
                           sums.D[dof] > 0;
               if (nf.active)
