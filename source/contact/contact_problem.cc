@@ -155,6 +155,12 @@ namespace Signorini
         pcout << "  " << counts.n_hanging
               << " hanging slave node(s): multipliers interpolated"
               << std::endl;
+      if (counts.n_axis > 0)
+        pcout << "  " << counts.n_axis
+              << " slave node(s) on the axis of quadratic faces (weight "
+                 "int psi 2 pi r zero or nearly): multipliers from the next "
+                 "two nodes by symmetry, no friction"
+              << std::endl;
     }
 
 

@@ -94,8 +94,10 @@ namespace Signorini
       sum_pair_scales(scan);
       const auto counts = number_multipliers(scan, owned_u, u_constraints);
       gather_master_faces(scan);
+      auto counts_all   = counts;
+      counts_all.n_axis = close_axis_multipliers();
       finish_slave_faces(dual_pair);
-      return counts;
+      return counts_all;
     }
 
 
@@ -509,15 +511,78 @@ namespace Signorini
               if (info.friction != numbers::invalid_dof_index)
                 for (unsigned int k = 0; k < dim - 1; ++k)
                   face.friction_dofs.push_back(info.friction + k);
-              hanging |= !info.hanging.empty();
-              face.excluded_contact[l] = info.exclude_contact;
-              face.excluded_friction[l] =
-                info.exclude_contact || info.exclude_friction;
+              hanging |= !info.hanging.empty() || !info.closure.empty();
+              face.excluded_contact[l]  = info.exclude_contact;
+              face.excluded_friction[l] = info.exclude_contact ||
+                                          info.exclude_friction ||
+                                          !info.closure.empty();
             }
           face.dual.clear();
           if (dual_pair[face.pair] && !hanging)
             face.dual = dual_basis(face);
         }
+    }
+
+
+    template <int dim>
+    unsigned int
+    Surfaces<dim>::close_axis_multipliers()
+    {
+      // In an axisymmetric model a slave node on the axis (r = 0) has the
+      // weight int psi_l 2 pi r over its face; for a straight quadratic face
+      // that is exactly zero (int_0^1 (1 - 3x + 2x^2) x dx = 0), and on a
+      // curved one it is a small difference of round-off size to a few
+      // percent of its neighbours', so its multiplier enters no
+      // displacement row (a singular tangent) or one with a vanishing
+      // weight (the force of the node over ~0). The pressure is symmetric
+      // about the axis, p = a + b r^2 near it: its multiplier is taken from the
+      // two nearest nodes of the face, lambda_0 = (r_2^2 lambda_1 - r_1^2
+      // lambda_2) / (r_2^2 - r_1^2), and its Lambda is zero (no radial traction
+      // on the axis).
+      using Entries = std::vector<std::pair<types::global_dof_index, double>>;
+      std::vector<std::pair<types::global_dof_index, Entries>> own;
+      for (const auto &face : slaves)
+        {
+          if (!parameters.axisymmetric || dim != 2)
+            break;
+          const unsigned int n      = face.X.size();
+          const double       length = face.X.front().distance(face.X[1]);
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              if (n < 3 || std::abs(face.X[k][0]) > 1e-9 * length)
+                continue;
+              // The two other nodes nearest the axis.
+              std::vector<std::pair<double, unsigned int>> by_radius;
+              for (unsigned int m = 0; m < n; ++m)
+                if (m != k)
+                  by_radius.emplace_back(face.X[m][0], m);
+              std::sort(by_radius.begin(), by_radius.end());
+              const double r1 = by_radius[0].first, r2 = by_radius[1].first;
+              if (r1 <= 1e-9 * length || r2 <= r1)
+                continue; // a face along the axis: no radius to extrapolate
+
+              const auto dof = [&](const unsigned int m) {
+                return face.node_dofs[face.k_node[m] * dim];
+              };
+              own.emplace_back(dof(k),
+                               Entries{{dof(by_radius[0].second),
+                                        r2 * r2 / (r2 * r2 - r1 * r1)},
+                                       {dof(by_radius[1].second),
+                                        -r1 * r1 / (r2 * r2 - r1 * r1)}});
+            }
+        }
+      unsigned int n_closed = 0;
+      for (const auto &from_rank : Utilities::MPI::all_gather(comm, own))
+        for (const auto &[dof0, entries] : from_rank)
+          {
+            auto &info = node_info.at(dof0);
+            if (info.closure.empty())
+              {
+                info.closure = entries;
+                ++n_closed;
+              }
+          }
+      return n_closed;
     }
 
 
@@ -546,13 +611,24 @@ namespace Signorini
                                             w);
                 }
             }
+          const bool closed = !info.closure.empty() && !info.exclude_contact &&
+                              info.hanging.empty();
+          if (closed && can(info.lambda))
+            {
+              constraints.add_line(info.lambda);
+              for (const auto &[parent, c] : info.closure)
+                constraints.add_entry(info.lambda,
+                                      node_info.at(parent).lambda,
+                                      c);
+            }
           if (has_friction && (info.exclude_contact || info.exclude_friction ||
-                               !info.hanging.empty()))
+                               !info.hanging.empty() || closed))
             for (unsigned int k = 0; k < dim - 1; ++k)
               if (can(info.friction + k))
                 {
                   constraints.add_line(info.friction + k);
-                  if (!info.exclude_contact && !info.exclude_friction)
+                  if (!info.exclude_contact && !info.exclude_friction &&
+                      !closed)
                     for (const auto &[parent, w] : info.hanging)
                       constraints.add_entry(info.friction + k,
                                             node_info.at(parent).friction + k,

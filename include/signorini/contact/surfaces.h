@@ -70,7 +70,7 @@ namespace Signorini
       struct Counts
       {
         unsigned int n_excluded_contact = 0, n_excluded_friction = 0,
-                     n_hanging = 0;
+                     n_hanging = 0, n_axis = 0;
       };
 
       /**
@@ -275,6 +275,11 @@ namespace Signorini
       /** Multiplier DoFs, exclusions and dual basis of each slave face. */
       void
       finish_slave_faces(const std::vector<bool> &dual_pair);
+      /** Axisymmetric: the closure of the multipliers of slave nodes on
+       * the axis whose weight is zero (NodeInfo::closure); returns their
+       * number over all ranks. */
+      unsigned int
+      close_axis_multipliers();
       /** The dual multiplier basis of @p face (SlaveFace::dual). */
       std::vector<double>
       dual_basis(const SlaveFace<dim> &face) const;
