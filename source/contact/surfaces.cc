@@ -92,12 +92,11 @@ namespace Signorini
       n_displacements = dof_handler.n_dofs();
       auto scan       = scan_boundary(u_constraints);
       sum_pair_scales(scan);
-      const auto counts = number_multipliers(scan, owned_u, u_constraints);
+      auto counts = number_multipliers(scan, owned_u, u_constraints);
       gather_master_faces(scan);
-      auto counts_all   = counts;
-      counts_all.n_axis = close_axis_multipliers();
+      counts.n_axis = close_axis_multipliers();
       finish_slave_faces(dual_pair);
-      return counts_all;
+      return counts;
     }
 
 
@@ -543,13 +542,13 @@ namespace Signorini
       std::vector<std::pair<types::global_dof_index, Entries>> own;
       for (const auto &face : slaves)
         {
-          if (!parameters.axisymmetric || dim != 2)
-            break;
-          const unsigned int n      = face.X.size();
-          const double       length = face.X.front().distance(face.X[1]);
+          const unsigned int n = face.X.size();
+          if (!parameters.axisymmetric || dim != 2 || n < 3)
+            continue; // linear faces: the axis node has a positive weight
+          const double length = face.X.front().distance(face.X[1]);
           for (unsigned int k = 0; k < n; ++k)
             {
-              if (n < 3 || std::abs(face.X[k][0]) > 1e-9 * length)
+              if (std::abs(face.X[k][0]) > 1e-9 * length)
                 continue;
               // The two other nodes nearest the axis.
               std::vector<std::pair<double, unsigned int>> by_radius;

@@ -88,8 +88,8 @@ namespace Signorini
       bool                    exclude_contact  = false;
       bool                    exclude_friction = false;
       std::vector<std::pair<types::global_dof_index, double>> hanging;
-      // A node on the axis of an axisymmetric model whose weight
-      // int psi_l 2 pi r is zero (quadratic faces): its lambda from the
+      // A node on the axis of an axisymmetric model on a quadratic face,
+      // whose weight int psi_l 2 pi r is zero or nearly: its lambda from the
       // next two nodes of its face (dof0, coefficient), by the symmetry of
       // the pressure; its Lambda is zero (Surfaces::close_axis_multipliers).
       std::vector<std::pair<types::global_dof_index, double>> closure;

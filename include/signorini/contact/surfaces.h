@@ -276,8 +276,8 @@ namespace Signorini
       void
       finish_slave_faces(const std::vector<bool> &dual_pair);
       /** Axisymmetric: the closure of the multipliers of slave nodes on
-       * the axis whose weight is zero (NodeInfo::closure); returns their
-       * number over all ranks. */
+       * the axis of quadratic faces, whose weight is zero or nearly
+       * (NodeInfo::closure); returns their number over all ranks. */
       unsigned int
       close_axis_multipliers();
       /** The dual multiplier basis of @p face (SlaveFace::dual). */
