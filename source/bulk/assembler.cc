@@ -87,6 +87,13 @@ namespace Signorini
                 std::vector<Tensor<2, 3>>(fe.n_dofs_per_cell()))
         , tau_q(quadrature.size())
         , c_q(quadrature.size())
+        , output_points(mapping,
+                        fe,
+                        QIterated<dim>(QTrapezoid<1>(), fe.degree),
+                        update_values | update_gradients |
+                          update_quadrature_points)
+        , output_gradients(output_points.n_quadrature_points)
+        , output_u(output_points.n_quadrature_points)
     {
     }
 
@@ -249,7 +256,7 @@ namespace Signorini
       FullMatrix<double> cell_matrix(n, n);
       Vector<double>     cell_rhs(n), cell_fint(n), cell_fext(n);
       std::vector<types::global_dof_index> dofs(n);
-      n_inverted = 0;
+      inverted = Inversion();
 
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -268,7 +275,9 @@ namespace Signorini
             FullMatrix<double> *local_matrix = matrix ? &cell_matrix : nullptr;
             const bool          finite =
               kinematics == Material::Kinematics::finite_strain;
-            if (finite && parameters.projected_volumetric_strain)
+            if (finite && !deformation_valid(cell, solution, k))
+              cell_fint(0) = std::numeric_limits<double>::quiet_NaN();
+            else if (finite && parameters.projected_volumetric_strain)
               add_projected_finite_strain_cell(
                 material, cell_history, k, cell_fint, local_matrix);
             else

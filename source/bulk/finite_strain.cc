@@ -7,6 +7,7 @@
 
 #include <signorini/bulk/assembler.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -29,7 +30,8 @@ namespace Signorini
       const auto        &fe_values = k.fe_values;
       if (projected)
         k.projection.start_cell();
-      k.inverted = false;
+      k.inverted   = false;
+      k.smallest_J = std::numeric_limits<double>::max();
       for (unsigned int q = 0; q < nq; ++q)
         {
           const double R = fe_values.quadrature_point(q)[0];
@@ -52,6 +54,7 @@ namespace Signorini
           const double J = determinant(k.F[q]);
           k.log_J[q]     = std::log(J); // NaN if inverted
           k.inverted     = k.inverted || !(J > 0);
+          k.smallest_J   = std::min(k.smallest_J, J);
           if (projected)
             k.projection.add_point(q, k.dV[q], k.theta_i);
         }
@@ -69,6 +72,45 @@ namespace Signorini
         }
     }
 
+    // det F at the output points too: on the axis (R = 0) the hoop
+    // stretch u_r / R takes its limit d u_r / d R.
+    template <int dim>
+    bool
+    Assembler<dim>::deformation_valid(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const TrilinosWrappers::MPI::Vector                  &solution,
+      CellKinematics                                       &k) const
+    {
+      const FEValuesExtractors::Vector displacement(0);
+      auto                            &points = k.output_points;
+      points.reinit(cell);
+      points[displacement].get_function_gradients(solution, k.output_gradients);
+      points[displacement].get_function_values(solution, k.output_u);
+      double       J_min = k.smallest_J;
+      const double R_min = 1e-12 * cell->diameter();
+      for (unsigned int q = 0; q < points.n_quadrature_points; ++q)
+        {
+          const double       R    = points.quadrature_point(q)[0];
+          const double       hoop = !parameters.axisymmetric ? 0. :
+                                    R > R_min ? k.output_u[q][0] / R :
+                                                k.output_gradients[q][0][0];
+          const Tensor<2, 3> F =
+            unit_symmetric_tensor<3>() +
+            Material::to_3d<dim>(k.output_gradients[q], hoop);
+          J_min = std::min(J_min, determinant(F));
+        }
+      if (J_min > 0)
+        return true;
+      ++inverted.n_cells;
+      if (!(J_min >= inverted.smallest_J)) // also a NaN J_min
+        {
+          inverted.smallest_J = J_min;
+          inverted.where      = cell->center();
+        }
+      return false;
+    }
+
+
     template <int dim>
     void
     Assembler<dim>::add_finite_strain_point(
@@ -79,16 +121,8 @@ namespace Signorini
       Vector<double>                 &f_int,
       FullMatrix<double>             *matrix) const
     {
-      const unsigned int n = fe.n_dofs_per_cell();
-      const Tensor<2, 3> F = k.F[q];
-      if (!(determinant(F) > 0))
-        {
-          // An inverted element: a NaN residual makes Newton fail this
-          // iterate (and the load stepper cut the step).
-          ++n_inverted;
-          f_int(0) += std::numeric_limits<double>::quiet_NaN();
-          return;
-        }
+      const unsigned int    n     = fe.n_dofs_per_cell();
+      const Tensor<2, 3>    F     = k.F[q];
       const Tensor<2, 3>    F_inv = invert(F);
       SymmetricTensor<2, 3> tau;
       SymmetricTensor<4, 3> c;
@@ -135,13 +169,7 @@ namespace Signorini
       const unsigned int          n  = fe.n_dofs_per_cell();
       const unsigned int          nq = cell_quadrature.size();
       const SymmetricTensor<2, 3> I  = unit_symmetric_tensor<3>();
-      if (k.inverted)
-        {
-          ++n_inverted;
-          f_int(0) += std::numeric_limits<double>::quiet_NaN();
-          return;
-        }
-      std::vector<double> tr_g(nq * n), w(nq, 0.);
+      std::vector<double>         tr_g(nq * n), w(nq, 0.);
       for (unsigned int q = 0; q < nq; ++q)
         {
           const Tensor<2, 3> F_inv = invert(k.F[q]);
@@ -195,6 +223,10 @@ namespace Signorini
 
 #define SIGNORINI_INSTANTIATE(dim)                                \
   template void Assembler<dim>::finite_strain_kinematics(         \
+    Assembler<dim>::CellKinematics &) const;                      \
+  template bool Assembler<dim>::deformation_valid(                \
+    const typename DoFHandler<dim>::active_cell_iterator &,       \
+    const TrilinosWrappers::MPI::Vector &,                        \
     Assembler<dim>::CellKinematics &) const;                      \
   template void Assembler<dim>::add_finite_strain_point(          \
     const Material::Interface<dim> &,                             \

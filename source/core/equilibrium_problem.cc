@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <optional>
+#include <sstream>
 
 namespace Signorini
 {
@@ -153,17 +155,43 @@ namespace Signorini
   std::string
   EquilibriumProblem<dim>::non_finite_cause() const
   {
-    const unsigned int inverted =
-      Utilities::MPI::sum(bulk.inverted_points(), system.mpi_communicator);
     return boundary_conditions.non_finite(report.position.time,
                                           system.triangulation,
                                           system.mpi_communicator) +
-           (inverted == 0 ?
-              std::string() :
-              "; " + std::to_string(inverted) +
-                " bulk quadrature point(s) have det F <= 0 (inverted "
-                "elements at finite strain; a smaller load step or a finer "
-                "mesh where the body deforms most)");
+           inversion_cause();
+  }
+
+
+  // The inverted cells of the last assembly, and where det F is smallest
+  // (taken from the rank that holds that cell, so 1 and N ranks say the
+  // same).
+  template <int dim>
+  std::string
+  EquilibriumProblem<dim>::inversion_cause() const
+  {
+    const auto        &comm      = system.mpi_communicator;
+    const auto        &inversion = bulk.inversion();
+    const unsigned int n         = Utilities::MPI::sum(inversion.n_cells, comm);
+    if (n == 0)
+      return "";
+    const auto smallest =
+      Utilities::MPI::min_max_avg(inversion.n_cells > 0 ?
+                                    inversion.smallest_J :
+                                    std::numeric_limits<double>::max(),
+                                  comm);
+    const Point<dim> where =
+      Utilities::MPI::broadcast(comm, inversion.where, smallest.min_index);
+    std::ostringstream text;
+    text << "; " << n
+         << " cell(s) inverted at finite strain (det F <= 0 at a quadrature "
+            "point or an output point; smallest det F = "
+         << std::setprecision(3) << smallest.min << " in the cell centred at (";
+    for (unsigned int d = 0; d < dim; ++d)
+      text << (d ? ", " : "") << std::setprecision(4) << where[d];
+    text << ") of the reference mesh). There the mesh cannot follow the "
+            "deformation: a smaller load step, a finer mesh there, or a "
+            "support or contact that the body lacks at that place";
+    return text.str();
   }
 
 

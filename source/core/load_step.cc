@@ -422,11 +422,15 @@ namespace Signorini
     switch (newton_failure_kind)
       {
         case NewtonFailure::non_finite:
-          return newton_failure.find("is not finite at") != std::string::npos ?
-                   "Give a load expression that is finite over the load "
-                   "path." :
-                   "The loads are finite: the iterate diverged; try " +
-                     smaller + ".";
+          if (newton_failure.find("is not finite at") != std::string::npos)
+            return "Give a load expression that is finite over the load "
+                   "path.";
+          if (newton_failure.find("inverted at finite strain") !=
+              std::string::npos)
+            return "The step was cut where the cell named above inverts; "
+                   "more steps help only if a smaller increment avoids it.";
+          return "The loads are finite: the iterate diverged; try " + smaller +
+                 ".";
         case NewtonFailure::stagnation:
           return "Either the load has no equilibrium (check it against what "
                  "the supports and friction can carry) or the iteration is "

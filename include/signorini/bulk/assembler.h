@@ -143,13 +143,23 @@ namespace Signorini
                      const TrilinosWrappers::MPI::Vector &solution,
                      Material::History<dim>              &history) const;
 
-      /** The number of bulk quadrature points of this rank whose
-       * deformation gradient had det F <= 0 (inverted elements) at the last
-       * assemble(); their stress is NaN, so the residual is not finite. */
-      unsigned int
-      inverted_points() const
+      /** The finite-strain cells of this rank that the last assemble()
+       * found inverted: det F <= 0 at a bulk quadrature point or at one of
+       * the points where the output evaluates the stress (the vertices, and
+       * for degree 2 the points DataOut adds). Their internal force is NaN,
+       * so the residual is not finite and Newton rejects the iterate. */
+      struct Inversion
       {
-        return n_inverted;
+        unsigned int n_cells = 0;
+        /** The smallest det F of those cells and the centre of its cell. */
+        double     smallest_J = 1.;
+        Point<dim> where;
+      };
+
+      const Inversion &
+      inversion() const
+      {
+        return inverted;
       }
 
       /** The bulk quadrature rule (that of the history). */
@@ -195,12 +205,29 @@ namespace Signorini
         std::vector<std::vector<Tensor<2, 3>>> g_q, g_bar;
         std::vector<SymmetricTensor<2, 3>>     tau_q;
         std::vector<SymmetricTensor<4, 3>>     c_q;
+        // The smallest det F at the bulk quadrature points; the output
+        // points (QIterated trapezoid of the degree) and the solution there.
+        double                      smallest_J = 1.;
+        FEValues<dim>               output_points;
+        std::vector<Tensor<2, dim>> output_gradients;
+        std::vector<Tensor<1, dim>> output_u;
       };
 
       /** The finite-strain part of cell_kinematics(): H, Grad N_i, F, ln J
        * and F_bar. */
       void
       finite_strain_kinematics(CellKinematics &k) const;
+
+      /** Finite strain: whether @p cell keeps det F > 0 at its quadrature
+       * points (finite_strain_kinematics() before) and at its output
+       * points; if not, counts it in #inverted. A bilinear element can
+       * invert at a corner while its Gauss points stay positive; its
+       * stress written there would be NaN. */
+      bool
+      deformation_valid(
+        const typename DoFHandler<dim>::active_cell_iterator &cell,
+        const TrilinosWrappers::MPI::Vector                  &solution,
+        CellKinematics                                       &k) const;
 
       /** Finite strain with 'Volumetric strain = projected' (F-bar):
        * internal force and tangent of the whole cell of @p k. */
@@ -280,7 +307,7 @@ namespace Signorini
       const std::vector<std::unique_ptr<FunctionParser<dim>>> &neumann;
       const BodyForces<dim>                                   &body_forces;
       const QGauss<dim>                                        cell_quadrature;
-      mutable unsigned int                                     n_inverted = 0;
+      mutable Inversion                                        inverted;
     };
   } // namespace Bulk
 } // namespace Signorini

@@ -113,6 +113,12 @@ namespace Signorini
   private:
     struct IterateSnapshot;
 
+    /** For non_finite_cause(): the inverted finite-strain cells of the
+     * last bulk assembly, with the smallest det F and its cell ("" if
+     * none). */
+    std::string
+    inversion_cause() const;
+
     /** The bulk residual into newton_rhs (with F_int, F_ext); with
      * @p with_jacobian in the same pass the bulk Jacobian into the matrix
      * and its right-hand side into bulk_rhs, through the constraints of
