@@ -101,8 +101,8 @@ namespace Signorini
         }
       if (J_min > 0)
         return true;
-      ++inverted.n_cells;
-      if (!(J_min >= inverted.smallest_J)) // also a NaN J_min
+      const bool first = inverted.n_cells++ == 0;
+      if (first || inverted.named_instead_by(J_min, cell->center()))
         {
           inverted.smallest_J = J_min;
           inverted.where      = cell->center();

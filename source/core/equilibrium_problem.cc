@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -162,32 +161,37 @@ namespace Signorini
   }
 
 
-  // The inverted cells of the last assembly, and where det F is smallest
-  // (taken from the rank that holds that cell, so 1 and N ranks say the
-  // same).
+  // The inverted cells of the last assembly, and the cell of the smallest
+  // det F over all ranks (ties of symmetric cells broken by the centre, so
+  // that 1 and N ranks name the same cell).
   template <int dim>
   std::string
   EquilibriumProblem<dim>::inversion_cause() const
   {
-    const auto        &comm      = system.mpi_communicator;
-    const auto        &inversion = bulk.inversion();
-    const unsigned int n         = Utilities::MPI::sum(inversion.n_cells, comm);
-    if (n == 0)
+    using Inversion = typename Bulk::Assembler<dim>::Inversion;
+    Inversion named;
+    for (const Inversion &rank :
+         Utilities::MPI::all_gather(system.mpi_communicator, bulk.inversion()))
+      if (rank.n_cells > 0)
+        {
+          if (named.n_cells == 0 ||
+              named.named_instead_by(rank.smallest_J, rank.where))
+            {
+              named.smallest_J = rank.smallest_J;
+              named.where      = rank.where;
+            }
+          named.n_cells += rank.n_cells;
+        }
+    if (named.n_cells == 0)
       return "";
-    const auto smallest =
-      Utilities::MPI::min_max_avg(inversion.n_cells > 0 ?
-                                    inversion.smallest_J :
-                                    std::numeric_limits<double>::max(),
-                                  comm);
-    const Point<dim> where =
-      Utilities::MPI::broadcast(comm, inversion.where, smallest.min_index);
     std::ostringstream text;
-    text << "; " << n
+    text << "; " << named.n_cells
          << " cell(s) inverted at finite strain (det F <= 0 at a quadrature "
             "point or an output point; smallest det F = "
-         << std::setprecision(3) << smallest.min << " in the cell centred at (";
+         << std::setprecision(3) << named.smallest_J
+         << " in the cell centred at (";
     for (unsigned int d = 0; d < dim; ++d)
-      text << (d ? ", " : "") << std::setprecision(4) << where[d];
+      text << (d ? ", " : "") << std::setprecision(4) << named.where[d];
     text << ") of the reference mesh). There the mesh cannot follow the "
             "deformation: a smaller load step, a finer mesh there, or a "
             "support or contact that the body lacks at that place";

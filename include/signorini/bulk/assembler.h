@@ -16,6 +16,7 @@
 #include <signorini/material/interface.h>
 #include <signorini/material/projected_volumetric_strain.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <vector>
@@ -154,6 +155,29 @@ namespace Signorini
         /** The smallest det F of those cells and the centre of its cell. */
         double     smallest_J = 1.;
         Point<dim> where;
+
+        /** Whether (J, centre) is to be named instead: a smaller det F, or
+         * one within 1e-10 of it (a tie of symmetric cells, equal up to
+         * round-off) at a lexicographically smaller centre, so that 1 and
+         * N ranks name the same cell. */
+        bool
+        named_instead_by(const double J, const Point<dim> &centre) const
+        {
+          if (!(std::abs(J - smallest_J) <= 1e-10)) // also a NaN J
+            return !(J >= smallest_J);
+          for (unsigned int d = 0; d < dim; ++d)
+            if (centre[d] != where[d])
+              return centre[d] < where[d];
+          return false;
+        }
+
+        /** For Utilities::MPI::all_gather(). */
+        template <class Archive>
+        void
+        serialize(Archive &archive, const unsigned int)
+        {
+          archive &n_cells &smallest_J &where;
+        }
       };
 
       const Inversion &
