@@ -30,6 +30,8 @@
 #include <signorini/core/parameters.h>
 #include <signorini/material/history.h>
 
+#include "bulk_helpers.h"
+
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -102,15 +104,7 @@ namespace
     const auto          materials =
       Signorini::Material::make_materials<dim>(parameters, prm);
     std::vector<std::unique_ptr<FunctionParser<dim>>> neumann;
-    Signorini::Bulk::BodyForces<dim>                  body_force;
-    for (const auto &[id, material] : materials)
-      {
-        body_force[id] = std::make_unique<FunctionParser<dim>>(dim);
-        body_force[id]->initialize(
-          FunctionParser<dim>::default_variable_names(),
-          dim == 2 ? "0; 0" : "0; 0; 0",
-          {});
-      }
+    const auto body_force = test_helpers::zero_body_forces<dim>(materials);
     const Signorini::Bulk::Assembler<dim> assembler(
       parameters, mapping, fe, materials, neumann, body_force);
     Signorini::Material::History<dim> history;

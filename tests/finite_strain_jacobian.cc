@@ -25,6 +25,8 @@
 #include <signorini/core/parameters.h>
 #include <signorini/material/history.h>
 
+#include "bulk_helpers.h"
+
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -95,15 +97,7 @@ namespace
     neumann.back()->initialize(FunctionParser<dim>::default_variable_names(),
                                "300*(1+y)",
                                {});
-    Signorini::Bulk::BodyForces<dim> body_force;
-    for (const auto &[id, material] : materials)
-      {
-        body_force[id] = std::make_unique<FunctionParser<dim>>(dim);
-        body_force[id]->initialize(
-          FunctionParser<dim>::default_variable_names(),
-          dim == 2 ? "0; 0" : "0; 0; 0",
-          {});
-      }
+    const auto body_force = test_helpers::zero_body_forces<dim>(materials);
     Signorini::Bulk::Assembler<dim> assembler(
       parameters, mapping, fe, materials, neumann, body_force);
     std::vector<std::unique_ptr<FunctionParser<dim>>> no_pressure;

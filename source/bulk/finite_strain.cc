@@ -85,7 +85,8 @@ namespace Signorini
       auto                            &points = k.output_points;
       points.reinit(cell);
       points[displacement].get_function_gradients(solution, k.output_gradients);
-      points[displacement].get_function_values(solution, k.output_u);
+      if (parameters.axisymmetric)
+        points[displacement].get_function_values(solution, k.output_u);
       double       J_min = k.smallest_J;
       const double R_min = 1e-12 * cell->diameter();
       for (unsigned int q = 0; q < points.n_quadrature_points; ++q)
