@@ -526,6 +526,59 @@ namespace
 } // namespace
 
 
+// held_tangent(): a node held along tangential directions (a symmetry
+// plane) keeps the friction component the conditions leave free.
+void
+check_held_tangent()
+{
+  // 2D: the one tangent held, no friction; nothing held, a = 0.
+  {
+    const Tensor<1, 2> n({0.6, 0.8});
+    const bool         ok = !held_tangent<2>(n, {Tensor<1, 2>({0.8, -0.6})}) &&
+                    held_tangent<2>(n, {})->norm() == 0;
+    deallog << "2d held tangent: no friction: " << yes_no(ok) << std::endl;
+    AssertThrow(ok, ExcInternalError());
+  }
+  // 3D: a . T is the held direction's tangential part (unit), for a
+  // normal in a coordinate plane (a symmetry plane: a is a frame axis) and
+  // a generic one; the largest component of a positive.
+  bool ok = true;
+  for (const auto &[n, h] : std::vector<std::pair<Tensor<1, 3>, Tensor<1, 3>>>{
+         {Tensor<1, 3>({0, 0.6, -0.8}), Tensor<1, 3>({2, 0, 0})},
+         {Tensor<1, 3>({0.6, 0, 0.8}), Tensor<1, 3>({0, -1, 0})},
+         {Tensor<1, 3>({0.8, 0.6, 0.0}), Tensor<1, 3>({0, 0, 1})},
+         {generic_normal<3>(), Tensor<1, 3>({0, 1, 0})}})
+    {
+      const auto a = held_tangent<3>(n, {h});
+      const auto T = tangent_basis(n);
+      ok           = ok && a && std::abs(a->norm() - 1) < 1e-14;
+      if (!ok)
+        break;
+      const Tensor<1, 3> t   = (*a)[0] * T[0] + (*a)[1] * T[1];
+      Tensor<1, 3>       h_t = h - (h * n) * n;
+      h_t /= h_t.norm();
+      ok = ok && std::abs(std::abs(t * h_t) - 1) < 1e-14 &&
+           std::max((*a)[0], (*a)[1]) >= std::abs(std::min((*a)[0], (*a)[1]));
+      // On a symmetry plane (n . h = 0) the frame axis is exact.
+      if (n * h == 0)
+        ok = ok && std::min(std::abs((*a)[0]), std::abs((*a)[1])) < 1e-15;
+    }
+  deallog << "3d held tangent: a . T along the held direction: " << yes_no(ok)
+          << std::endl;
+  AssertThrow(ok, ExcInternalError());
+  // Two independent tangents held: no slip, no friction; two parallel
+  // ones: one condition.
+  const Tensor<1, 3> n({0, 0, 1});
+  ok =
+    !held_tangent<3>(n, {Tensor<1, 3>({1, 0, 0}), Tensor<1, 3>({1, 1, 0})}) &&
+    held_tangent<3>(n, {Tensor<1, 3>({1, 0, 0}), Tensor<1, 3>({-2, 0, 0})})
+        ->norm() > 0;
+  deallog << "3d two tangents held: no friction; parallel: one condition: "
+          << yes_no(ok) << std::endl;
+  AssertThrow(ok, ExcInternalError());
+}
+
+
 int
 main()
 {
@@ -539,6 +592,7 @@ main()
       check_jacobians<3>();
       check_physics<2>();
       check_physics<3>();
+      check_held_tangent();
 
       deallog << "OK" << std::endl;
     }

@@ -222,8 +222,9 @@ namespace Signorini
       std::set<types::global_dof_index> seen;
       for (const auto &face : surfaces.slave_faces())
         if (node_statuses.friction_by_node(face.pair))
-          for (const auto dof : face.lambda_dofs)
+          for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
             {
+              const auto dof = face.lambda_dofs[l];
               if (!surfaces.owned_multipliers().is_element(dof) ||
                   !seen.insert(dof).second)
                 continue;
@@ -241,6 +242,13 @@ namespace Signorini
                 continue;
               n /= n.norm();
               const Tensor<1, dim> F_t = F - (F * n) * n;
+              // A held tangent: the law acts along the free one only.
+              const auto    &a = face.friction_held[l];
+              const auto     T = tangent_basis(n);
+              Tensor<1, dim> h;
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                h += a[k] * T[k];
+              W -= (W * h) * h;
               if (!scales.measurable(face.pair, F_t, W))
                 continue;
               add_slip_sample(result[face.pair],

@@ -101,6 +101,38 @@ namespace Signorini
 
 
 
+    template <int dim>
+    std::optional<Tensor<1, dim - 1>>
+    held_tangent(const Tensor<1, dim>              &n,
+                 const std::vector<Tensor<1, dim>> &held)
+    {
+      Tensor<1, dim - 1> a;
+      if (held.empty())
+        return a;
+      if (dim == 2)
+        return std::nullopt;
+      const auto tau = tangent_basis(n);
+      for (const auto &h : held)
+        {
+          Tensor<1, dim - 1> t;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            t[k] = tau[k] * h;
+          if (t.norm() == 0)
+            continue;
+          t /= t.norm();
+          if (a.norm() == 0)
+            a = t;
+          else if (std::abs(a[0] * t[dim - 2] - a[dim - 2] * t[0]) > 1e-6)
+            return std::nullopt; // two tangents held: no slip at all
+        }
+      if (a.norm() == 0)
+        return std::nullopt;
+      const unsigned int largest =
+        std::abs(a[0]) >= std::abs(a[dim - 2]) ? 0 : dim - 2;
+      return a[largest] > 0 ? a : -a;
+    }
+
+
     namespace
     {
       // Normal part: sections 3.1, 4 (L_c rows), 5 ("Contact").
@@ -335,6 +367,10 @@ namespace Signorini
 
     template std::array<Tensor<1, 3>, 2>
     tangent_basis<3>(const Tensor<1, 3> &);
+    template std::optional<Tensor<1, 1>>
+    held_tangent<2>(const Tensor<1, 2> &, const std::vector<Tensor<1, 2>> &);
+    template std::optional<Tensor<1, 2>>
+    held_tangent<3>(const Tensor<1, 3> &, const std::vector<Tensor<1, 3>> &);
 
     template PointResponse<2>
     evaluate_contact_law<2>(const PointState<2> &, const LawParameters &);

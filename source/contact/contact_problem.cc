@@ -151,6 +151,11 @@ namespace Signorini
                  "excluded from contact, "
               << counts.n_excluded_friction
               << " with a tangential one excluded from friction" << std::endl;
+      if (counts.n_held_tangent > 0)
+        pcout << "  " << counts.n_held_tangent
+              << " slave node(s) with one tangent held by a Dirichlet "
+                 "condition: friction along the other"
+              << std::endl;
       if (counts.n_hanging > 0)
         pcout << "  " << counts.n_hanging
               << " hanging slave node(s): multipliers interpolated"

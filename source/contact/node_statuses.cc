@@ -224,6 +224,9 @@ namespace Signorini
                   for (unsigned int k = 0; k < dim - 1; ++k)
                     nf.H[k] = state[face.friction_dofs[l * (dim - 1) + k]] +
                               law.rho_t * sums.W[k][dof] / sums.D[dof];
+                  // One tangent held: the law along the other only.
+                  const auto &a = face.friction_held[l];
+                  nf.H -= (nf.H * a) * a;
                   nf.stick = nf.H.norm() <= 1. + stick_tie;
                 }
               const bool  owned = surfaces.owned_multipliers().is_element(dof);

@@ -238,10 +238,16 @@ namespace Signorini
       // the slave's outward normal.
       if (!point.paired)
         point.normal = point.slave_normal;
-      // The 3D crossing axis of T is kept until the next pairing, so that T
-      // stays smooth in n when n follows the iterate.
-      point.tangent_axis = tangent_axis<dim>(point.normal);
-      point.tangents     = tangent_basis<dim>(point.normal, point.tangent_axis);
+      // The 3D crossing axis of T is the slave face's, the same at every
+      // pairing, so that Lambda keeps its meaning over the run (the axis of
+      // each current normal switched where |n_x| crossed 0.8, turning T by
+      // 90 degrees and Lambda with it); only a normal turned to within 18
+      // degrees of that axis takes its own.
+      const unsigned int axis = surfaces.slave_faces()[point.face].tangent_axis;
+      point.tangent_axis      = std::abs(point.normal[axis]) <= 0.95 ?
+                                  axis :
+                                  tangent_axis<dim>(point.normal);
+      point.tangents = tangent_basis<dim>(point.normal, point.tangent_axis);
       return pinned;
     }
 

@@ -167,6 +167,7 @@ namespace Signorini
       face.face           = f;
       face.pair           = p;
       face.outward_normal = scan.centre_values->normal_vector(0);
+      face.tangent_axis   = tangent_axis<dim>(face.outward_normal);
       for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
         if (fe.has_support_on_face(i, f))
           {
@@ -333,12 +334,30 @@ namespace Signorini
         n_displacements + n_lambdas +
         offset_of(n_owned_friction, comm) * (dim - 1);
 
+      // The node's normal: the mean of its faces' (summed in a fixed
+      // order, the same on any rank count).
+      const auto node_normal = [](const typename Scan::SeenNode &node) {
+        auto normals = node.normals;
+        std::sort(normals.begin(),
+                  normals.end(),
+                  [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
+                    return std::lexicographical_compare(a.begin_raw(),
+                                                        a.end_raw(),
+                                                        b.begin_raw(),
+                                                        b.end_raw());
+                  });
+        Tensor<1, dim> n;
+        for (const auto &m : normals)
+          n += m;
+        return Tensor<1, dim>(n / n.norm());
+      };
       std::vector<std::pair<types::global_dof_index, NodeInfo>> own;
       types::global_dof_index                                   jf = 0;
       for (unsigned int j = 0; j < owned_nodes.size(); ++j)
         {
-          const auto &node = scan.seen.at(owned_nodes[j]);
-          NodeInfo    info;
+          const auto                 &node = scan.seen.at(owned_nodes[j]);
+          NodeInfo                    info;
+          std::vector<Tensor<1, dim>> tangential; // held along the face
           for (unsigned int c = 0; c < dim; ++c)
             if (const auto *entries =
                   u_constraints.get_constraint_entries(node.dofs[c]))
@@ -366,16 +385,25 @@ namespace Signorini
                       info.hanging = *entries;
                     continue;
                   }
+                bool along_normal = false;
                 for (const auto &n : node.normals)
-                  (std::abs(n * held) > 0.5 * held.norm() ?
-                     info.exclude_contact :
-                     info.exclude_friction) = true;
+                  along_normal |= std::abs(n * held) > 0.5 * held.norm();
+                if (along_normal)
+                  info.exclude_contact = true;
+                else
+                  tangential.push_back(held);
               }
           const bool friction = pairs[node.pair].friction > 0;
           info.lambda         = lambda_offset + j;
           if (friction)
             info.friction = friction_offset + (dim - 1) * jf++;
-          info.exclude_friction &= friction;
+          if (friction && !info.exclude_contact)
+            {
+              const auto a = held_tangent(node_normal(node), tangential);
+              info.exclude_friction = !a;
+              if (a && a->norm() > 0)
+                info.friction_held.assign(a->begin_raw(), a->end_raw());
+            }
           info.pair = node.pair;
           own.emplace_back(owned_nodes[j], std::move(info));
         }
@@ -385,8 +413,8 @@ namespace Signorini
         for (const auto &[dof0, info] : from_rank)
           {
             counts.n_excluded_contact += info.exclude_contact;
-            counts.n_excluded_friction +=
-              !info.exclude_contact && info.exclude_friction;
+            counts.n_excluded_friction += info.exclude_friction;
+            counts.n_held_tangent += !info.friction_held.empty();
             counts.n_hanging += !info.hanging.empty();
             node_info.emplace(dof0, info);
           }
@@ -503,6 +531,7 @@ namespace Signorini
           face.friction_dofs.clear();
           face.excluded_contact.assign(n_l, false);
           face.excluded_friction.assign(n_l, false);
+          face.friction_held.clear();
           for (unsigned int l = 0; l < n_l; ++l)
             {
               const auto &info = node_info.at(face.node_dofs[l * dim]);
@@ -515,6 +544,10 @@ namespace Signorini
               face.excluded_friction[l] = info.exclude_contact ||
                                           info.exclude_friction ||
                                           !info.closure.empty();
+              Tensor<1, dim - 1> a;
+              for (unsigned int k = 0; k < info.friction_held.size(); ++k)
+                a[k] = info.friction_held[k];
+              face.friction_held.push_back(a);
             }
           face.dual.clear();
           if (dual_pair[face.pair] && !hanging)
@@ -622,17 +655,34 @@ namespace Signorini
             }
           if (has_friction && (info.exclude_contact || info.exclude_friction ||
                                !info.hanging.empty() || closed))
-            for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                if (can(info.friction + k))
+                  {
+                    constraints.add_line(info.friction + k);
+                    if (!info.exclude_contact && !info.exclude_friction &&
+                        !closed)
+                      for (const auto &[parent, w] : info.hanging)
+                        constraints.add_entry(info.friction + k,
+                                              node_info.at(parent).friction + k,
+                                              w);
+                  }
+            }
+          else if (has_friction && !info.friction_held.empty())
+            {
+              // One tangent held (3D): a . Lambda = 0, solved for the
+              // component of a's larger entry.
+              const auto        &a = info.friction_held;
+              const unsigned int k = std::abs(a[0]) >= std::abs(a[1]) ? 0 : 1;
               if (can(info.friction + k))
                 {
                   constraints.add_line(info.friction + k);
-                  if (!info.exclude_contact && !info.exclude_friction &&
-                      !closed)
-                    for (const auto &[parent, w] : info.hanging)
-                      constraints.add_entry(info.friction + k,
-                                            node_info.at(parent).friction + k,
-                                            w);
+                  if (a[1 - k] != 0)
+                    constraints.add_entry(info.friction + k,
+                                          info.friction + 1 - k,
+                                          -a[1 - k] / a[k]);
                 }
+            }
         }
       for (const auto &[d, entries] : master_lines)
         if (can(d))

@@ -4,6 +4,8 @@
 #include <deal.II/base/tensor.h>
 
 #include <array>
+#include <optional>
+#include <vector>
 
 namespace Signorini
 {
@@ -300,6 +302,22 @@ namespace Signorini
     template <int dim>
     std::array<Tensor<1, dim>, dim - 1>
     tangent_basis(const Tensor<1, dim> &n, const unsigned int axis);
+
+    /**
+     * The friction condition of a slave node whose displacement is held by
+     * Dirichlet conditions along the tangential directions @p held (not
+     * necessarily unit, none along the unit normal @p n): the slip along
+     * them is zero, so is the friction traction (a symmetry plane), and
+     * Lambda keeps only the component the conditions leave free.
+     * Returns the unit a, in the frame tangent_basis(n), with
+     * a . Lambda = 0 as the node's condition (its largest component
+     * positive); zero if @p held is empty; none if the held directions span
+     * the tangent plane (2D: any), and the node carries no friction.
+     */
+    template <int dim>
+    std::optional<Tensor<1, dim - 1>>
+    held_tangent(const Tensor<1, dim>              &n,
+                 const std::vector<Tensor<1, dim>> &held);
 
 
     /**

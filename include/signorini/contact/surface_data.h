@@ -31,6 +31,10 @@ namespace Signorini
       std::vector<types::global_dof_index> lambda_dofs;
       std::vector<types::global_dof_index> friction_dofs;  // node-major
       Tensor<1, dim>                       outward_normal; // at centre
+      // The 3D crossing axis of the tangent frames of the face's points,
+      // tangent_axis(outward_normal) of the reference face, kept over the
+      // run (Pairing::pair_point).
+      unsigned int tangent_axis = 0;
       // The face map: reference node positions in FE_Q<dim-1> order
       // (as for master faces); k_node[k] = l, the node_local index of
       // face node k; u_node[a], u_comp[a]: node and component of u_local[a];
@@ -46,6 +50,12 @@ namespace Signorini
       // Per node: excluded from contact (a Dirichlet condition along the
       // normal) or from friction (one along a tangent, or from contact).
       std::vector<bool> excluded_contact, excluded_friction;
+      // Per node (3D): a, the unit tangent held by a Dirichlet condition
+      // in the tangent frame (tau_1, tau_2) of the node; the node's Lambda
+      // has no component along it (a . Lambda = 0) and its friction acts
+      // along the other tangent only. Zero: no tangent held (or both, and
+      // the node is excluded from friction).
+      std::vector<Tensor<1, dim - 1>> friction_held;
     };
 
 
@@ -87,6 +97,9 @@ namespace Signorini
       unsigned int            pair             = 0;
       bool                    exclude_contact  = false;
       bool                    exclude_friction = false;
+      // 3D, one tangent held: a in the node's frame (SlaveFace::
+      // friction_held); empty otherwise.
+      std::vector<double>                                     friction_held;
       std::vector<std::pair<types::global_dof_index, double>> hanging;
       // A node on the axis of an axisymmetric model on a quadratic face,
       // whose weight int psi_l 2 pi r is zero or nearly: its lambda from the
@@ -98,8 +111,8 @@ namespace Signorini
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar &lambda &friction &pair &exclude_contact &exclude_friction &hanging
-          &closure;
+        ar &lambda &friction &pair &exclude_contact &exclude_friction
+          &friction_held &hanging &closure;
       }
     };
 

@@ -70,7 +70,7 @@ namespace Signorini
       struct Counts
       {
         unsigned int n_excluded_contact = 0, n_excluded_friction = 0,
-                     n_hanging = 0, n_axis = 0;
+                     n_held_tangent = 0, n_hanging = 0, n_axis = 0;
       };
 
       /**
