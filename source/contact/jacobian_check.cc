@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -73,6 +74,18 @@ namespace Signorini
       for (const auto i : owned)
         base[i] = state[i];
       base.compress(VectorOperation::insert);
+      // The owned constrained DoFs that follow each DoF (its share w in
+      // their constraint lines: a hanging node, a multiplier line such as
+      // a . Lambda = 0): the assembled matrix is condensed, so its column j
+      // is the derivative along the lines, and the perturbation of j moves
+      // them by w delta.
+      std::map<types::global_dof_index,
+               std::vector<std::pair<types::global_dof_index, double>>>
+        followers;
+      for (const auto &line : constraints.get_lines())
+        if (owned.is_element(line.index))
+          for (const auto &[k, w] : line.entries)
+            followers[k].emplace_back(line.index, w);
       const auto evaluate = [&](const types::global_dof_index  j,
                                 const double                   delta,
                                 TrilinosWrappers::MPI::Vector &r) {
@@ -80,6 +93,9 @@ namespace Signorini
         // (Set, not added: the compress() below is an insert.)
         if (owned.is_element(j))
           perturbed[j] = base[j] + delta;
+        if (const auto f = followers.find(j); f != followers.end())
+          for (const auto &[i, w] : f->second)
+            perturbed[i] = base[i] + w * delta;
         perturbed.compress(VectorOperation::insert);
         state = perturbed;
         r     = 0;

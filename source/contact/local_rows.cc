@@ -213,18 +213,17 @@ namespace Signorini
                   }
               continue;
             }
-          // Slip: K_B = (I - q q) / |H| P, dH/dLambda_l = I,
-          // dH/du = rho_t / D_l dW/du; P = I - a a projects out a held
-          // tangent a (zero if none). Frozen in slip: q fixed, K_B = 0.
-          const double nH = nf.H.norm();
-          const auto  &a  = surfaces.slave_faces()[point.face].friction_held[l];
+          // Slip: K_B = (I - q q) / |H|, dH/dLambda_l = I,
+          // dH/du = rho_t / D_l dW/du. Frozen in slip: q fixed, K_B = 0.
+          // (A node with a held tangent a has H, and q, along the free
+          // tangent f; its constraint line a . Lambda = 0 leaves the row
+          // along f, and f^T K_B = 0: the projection of H adds nothing.)
+          const double       nH = nf.H.norm();
           Tensor<2, dim - 1> KB;
           if (!nf.frozen)
             for (unsigned int k = 0; k < dim - 1; ++k)
               for (unsigned int kk = 0; kk < dim - 1; ++kk)
-                for (unsigned int m = 0; m < dim - 1; ++m)
-                  KB[k][kk] += ((k == m) - nf.H[k] * nf.H[m] / (nH * nH)) / nH *
-                               ((m == kk) - a[m] * a[kk]);
+                KB[k][kk] = ((k == kk) - nf.H[k] * nf.H[kk] / (nH * nH)) / nH;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
               for (unsigned int kk = 0; kk < dim - 1; ++kk)
