@@ -95,6 +95,32 @@ namespace Signorini
 
 
     template <int dim>
+    std::array<double, 2>
+    Pairing<dim>::obstacle_increment_products(const double time,
+                                              const double start,
+                                              const double previous) const
+    {
+      std::array<double, 2> products{{0., 0.}};
+      for (const auto &point : point_store)
+        {
+          const unsigned int p = surfaces.slave_faces()[point.face].pair;
+          if (!motions[p] || !point.paired)
+            continue;
+          // The obstacle's material point at the paired master point.
+          const Point<dim> X =
+            obstacles[p]->get_motion().inverse(point.x_m_rigid);
+          const Point<dim>     at_start = motions[p]->at(start).apply(X);
+          const Tensor<1, dim> d_new = motions[p]->at(time).apply(X) - at_start;
+          const Tensor<1, dim> d_old =
+            at_start - motions[p]->at(previous).apply(X);
+          products[0] += d_new * d_old;
+          products[1] += d_old * d_old;
+        }
+      return products;
+    }
+
+
+    template <int dim>
     std::string
     Pairing<dim>::rule_description() const
     {

@@ -194,15 +194,17 @@ namespace Signorini
   // The scale of the last converged increment in the extrapolated
   // predictor: the factor that best matches the data of the last increment
   // to this step's, in the least-squares sense, for each kind of data that
-  // moved in the last increment: the prescribed (Dirichlet) values, and
-  // the loads (the external force vector of the Neumann tractions and the
-  // body force); with both, the mean of the two (dimensionless) factors.
-  // For data proportional along the path it is the ratio of the step
-  // sizes; where the data reverse it is negative, and where they turn at a
-  // right angle near 0, so the predictor never continues a motion or a
-  // load that the path has left (a plastic body would yield further in the
-  // predictor where it unloads). Where neither moved (obstacles drive the
-  // scene): the ratio of the step sizes.
+  // moved in the last increment: the prescribed (Dirichlet) values, the
+  // loads (the external force vector of the Neumann tractions and the
+  // body force), and the prescribed motion of the rigid obstacles (at
+  // their paired points); the mean of the (dimensionless) factors of
+  // those that moved. For data proportional along the path it is the
+  // ratio of the step sizes; where the data reverse it is negative, and
+  // where they turn at a right angle near 0 (an ironing die that stops
+  // pressing and starts to slide), so the predictor never continues a
+  // motion or a load that the path has left (a plastic body would yield
+  // further in the predictor where it unloads). Where none moved: the
+  // ratio of the step sizes.
   template <int dim>
   double
   LoadStep<dim>::predictor_factor(const double time,
@@ -220,22 +222,28 @@ namespace Signorini
           new_old += d_new * d_old;
           old_old += d_old * d_old;
         }
-    std::array<double, 4> products{{new_old, old_old, 0., 0.}};
+    std::array<double, 6> products{{new_old, old_old, 0., 0., 0., 0.}};
+    const double          previous = step_start_time - last_step_size;
     if (boundary_conditions.has_loads())
       {
         const auto local =
-          load_increment_products(time,
-                                  step_start_time,
-                                  step_start_time - last_step_size);
+          load_increment_products(time, step_start_time, previous);
         products[2] = local[0];
         products[3] = local[1];
+      }
+    if (contact.active())
+      {
+        const auto local =
+          contact.obstacle_increment_products(time, step_start_time, previous);
+        products[4] = local[0];
+        products[5] = local[1];
       }
     Utilities::MPI::sum(ArrayView<const double>(products),
                         system.mpi_communicator,
                         ArrayView<double>(products));
     double       sum_of_factors = 0;
     unsigned int n_factors      = 0;
-    for (unsigned int b = 0; b < 2; ++b)
+    for (unsigned int b = 0; b < 3; ++b)
       if (products[2 * b + 1] > 0)
         {
           sum_of_factors += products[2 * b] / products[2 * b + 1];

@@ -265,6 +265,15 @@ namespace Signorini
         return history.end_geometric_iteration(pairing.points(), g);
       }
 
+      /** Pairing::obstacle_increment_products(). */
+      std::array<double, 2>
+      obstacle_increment_products(const double time,
+                                  const double start,
+                                  const double previous) const
+      {
+        return pairing.obstacle_increment_products(time, start, previous);
+      }
+
       /** Pairing::deep_points(). */
       unsigned int
       deep_points() const

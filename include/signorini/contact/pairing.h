@@ -13,6 +13,7 @@
 #include <signorini/contact/surfaces.h>
 #include <signorini/core/parameters.h>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -112,6 +113,18 @@ namespace Signorini
       {
         return n_newly_pinned;
       }
+
+      /**
+       * The prescribed motion of the rigid obstacles as predictor data:
+       * this rank's parts of d_new . d_old and d_old . d_old, with d the
+       * displacement of the obstacle's material point at each paired point
+       * between @p start and @p time (new) and between @p previous and
+       * @p start (old) (LoadStep::predictor_factor).
+       */
+      std::array<double, 2>
+      obstacle_increment_products(const double time,
+                                  const double start,
+                                  const double previous) const;
 
       /** "mortar (...)" or the fixed rule's name and the number of
        * points (collective). */
