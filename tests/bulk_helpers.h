@@ -4,8 +4,16 @@
 #define signorini_tests_bulk_helpers_h
 
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
 
 #include <signorini/bulk/assembler.h>
+#include <signorini/core/parameters.h>
+#include <signorini/material/interface.h>
 
 #include <memory>
 #include <string>
@@ -28,6 +36,30 @@ namespace test_helpers
       }
     return body_force;
   }
+
+
+  /** What a bulk-assembler test builds on a mesh: the FE_Q(degree)^dim
+   * space with its DoFs, a linear mapping, the materials of the input. */
+  template <int dim>
+  struct BulkSpace
+  {
+    BulkSpace(const dealii::Triangulation<dim> &tria,
+              const unsigned int                degree,
+              const Signorini::Parameters      &parameters,
+              dealii::ParameterHandler         &prm)
+        : fe(dealii::FE_Q<dim>(degree), dim)
+        , dof_handler(tria)
+        , mapping(1)
+        , materials(Signorini::Material::make_materials<dim>(parameters, prm))
+    {
+      dof_handler.distribute_dofs(fe);
+    }
+
+    const dealii::FESystem<dim>           fe;
+    dealii::DoFHandler<dim>               dof_handler;
+    const dealii::MappingQ<dim>           mapping;
+    const Signorini::Bulk::Materials<dim> materials;
+  };
 } // namespace test_helpers
 
 #endif

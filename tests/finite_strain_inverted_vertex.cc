@@ -97,12 +97,8 @@ namespace
     Triangulation<dim> tria;
     GridGenerator::hyper_cube(tria, 0, 1);
     tria.begin_active()->set_material_id(1);
-    const FESystem<dim> fe(FE_Q<dim>(degree), dim);
-    DoFHandler<dim>     dof_handler(tria);
-    dof_handler.distribute_dofs(fe);
-    const MappingQ<dim> mapping(1);
-    const auto          materials =
-      Signorini::Material::make_materials<dim>(parameters, prm);
+    const test_helpers::BulkSpace<dim> space(tria, degree, parameters, prm);
+    const auto &[fe, dof_handler, mapping, materials] = space;
     std::vector<std::unique_ptr<FunctionParser<dim>>> neumann;
     const auto body_force = test_helpers::zero_body_forces<dim>(materials);
     const Signorini::Bulk::Assembler<dim> assembler(

@@ -86,12 +86,8 @@ namespace
     GridGenerator::subdivided_hyper_rectangle(tria, cells, lower, upper, true);
     for (const auto &cell : tria.active_cell_iterators())
       cell->set_material_id(1);
-    const FESystem<dim> fe(FE_Q<dim>(degree), dim);
-    DoFHandler<dim>     dof_handler(tria);
-    dof_handler.distribute_dofs(fe);
-    const MappingQ<dim> mapping(1);
-    const auto          materials =
-      Signorini::Material::make_materials<dim>(parameters, prm);
+    const test_helpers::BulkSpace<dim> space(tria, degree, parameters, prm);
+    const auto &[fe, dof_handler, mapping, materials] = space;
     std::vector<std::unique_ptr<FunctionParser<dim>>> neumann;
     neumann.push_back(std::make_unique<FunctionParser<dim>>(1));
     neumann.back()->initialize(FunctionParser<dim>::default_variable_names(),

@@ -100,6 +100,14 @@ namespace Signorini
                                               const double start,
                                               const double previous) const
     {
+      // Each obstacle's rigid motion at the three times, once.
+      std::vector<std::array<Obstacles::RigidMotion<dim>, 3>> at(
+        motions.size());
+      for (unsigned int p = 0; p < motions.size(); ++p)
+        if (motions[p])
+          at[p] = {{motions[p]->at(time),
+                    motions[p]->at(start),
+                    motions[p]->at(previous)}};
       std::array<double, 2> products{{0., 0.}};
       for (const auto &point : point_store)
         {
@@ -109,10 +117,9 @@ namespace Signorini
           // The obstacle's material point at the paired master point.
           const Point<dim> X =
             obstacles[p]->get_motion().inverse(point.x_m_rigid);
-          const Point<dim>     at_start = motions[p]->at(start).apply(X);
-          const Tensor<1, dim> d_new = motions[p]->at(time).apply(X) - at_start;
-          const Tensor<1, dim> d_old =
-            at_start - motions[p]->at(previous).apply(X);
+          const Point<dim>     at_start = at[p][1].apply(X);
+          const Tensor<1, dim> d_new    = at[p][0].apply(X) - at_start;
+          const Tensor<1, dim> d_old    = at_start - at[p][2].apply(X);
           products[0] += d_new * d_old;
           products[1] += d_old * d_old;
         }
