@@ -99,7 +99,6 @@ namespace
       {
         for (unsigned int j = 0; j < dim; ++j)
           J[dim + 1 + k][j] = r.drf_dd[k][j];
-        J[dim + 1 + k][dim] = r.drf_dlambda[k];
         for (unsigned int l = 0; l < dim - 1; ++l)
           J[dim + 1 + k][dim + 1 + l] = r.drf_dLambda[k][l];
       }
@@ -186,6 +185,9 @@ namespace
           s.slip = tangent_combination<dim>(s.tangents, 0.08, -0.05);
           break;
       }
+    // The friction rows' weight: lambda at the iterate, held while the
+    // finite differences move lambda (no K_fc).
+    s.row_lambda = s.lambda;
     return s;
   }
 
@@ -271,7 +273,7 @@ namespace
           name << dim << "d " << to_string(which) << " mu=" << mu
                << " lagrange";
           if (mu > 0.)
-            name << " lambda_f=lambda K_fc";
+            name << " lambda_f=lambda, row weight held";
 
           std::cout << std::left << std::setw(52) << name.str()
                     << " status=" << std::setw(5) << to_string(r.status)
@@ -353,6 +355,7 @@ namespace
       s.tangents             = T;
       s.gap                  = 0.;
       s.lambda               = -1.5;
+      s.row_lambda           = s.lambda;
       s.slip                 = tangent_combination<dim>(T, 0.03, -0.04);
       const Tensor<1, dim> t = s.slip / s.slip.norm();
       for (unsigned int k = 0; k < dim - 1; ++k)
@@ -377,13 +380,38 @@ namespace
       PointState<dim> s = make_state<dim>(Which::stick);
       s.slip            = Tensor<1, dim>();
       const auto r      = evaluate_contact_law(s, p);
-      const bool ok = r.status == PointStatus::stick && r.r_f.norm() == 0. &&
-                      r.drf_dlambda.norm() == 0.;
-      deallog << dim
-              << "d stick point with v = 0: r_f = 0, K_fc = 0: " << yes_no(ok)
+      const bool ok     = r.status == PointStatus::stick && r.r_f.norm() == 0.;
+      deallog << dim << "d stick point with v = 0: r_f = 0: " << yes_no(ok)
               << std::endl;
       AssertThrow(ok, ExcInternalError());
     }
+
+    // The rows' weight: a stick and a slip point evaluated with the weight
+    // lambda and 3 lambda. The rows and their derivatives scale by 3; the
+    // status, the traction and its derivatives (lambda itself) do not move.
+    for (const Which which : {Which::stick, Which::slip})
+      {
+        PointState<dim> s = make_state<dim>(which);
+        const auto      r = evaluate_contact_law(s, p);
+        s.row_lambda      = 3. * s.lambda;
+        const auto r3     = evaluate_contact_law(s, p);
+        bool       ok     = r3.status == r.status &&
+                  (r3.r_f - 3. * r.r_f).norm() < 1e-14 * r.r_f.norm() &&
+                  (r3.drf_dLambda - 3. * r.drf_dLambda).norm() <=
+                    1e-14 * r.drf_dLambda.norm() &&
+                  r3.force == r.force && r3.dforce_dd == r.dforce_dd &&
+                  r3.dforce_dlambda == r.dforce_dlambda;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          ok = ok &&
+               (r3.drf_dd[k] - 3. * r.drf_dd[k]).norm() <=
+                 1e-14 * r.drf_dd[k].norm() &&
+               r3.dforce_dLambda[k] == r.dforce_dLambda[k];
+        deallog << dim << "d " << to_string(which)
+                << " point, friction rows weighted by 3 lambda: rows x 3, "
+                   "traction unchanged: "
+                << yes_no(ok) << std::endl;
+        AssertThrow(ok, ExcInternalError());
+      }
 
     // Hand-picked classification, on an axis-aligned normal so that the
     // kinks are hit exactly in floating point.
@@ -488,7 +516,7 @@ namespace
         identity[k][k] = 1.;
       bool ok = r.in_contact && !r.friction_active && r.lambda_f == 0. &&
                 r.status == PointStatus::slip && r.r_f == s.Lambda &&
-                r.drf_dLambda == identity && r.drf_dlambda.norm() == 0. &&
+                r.drf_dLambda == identity &&
                 (r.force - contact_force).norm() < 1e-13 &&
                 (r.dforce_dlambda + n).norm() == 0. &&
                 (r.dforce_dd - p.rho_n * outer_product(n, n)).norm() == 0.;
@@ -509,7 +537,7 @@ namespace
           const auto s  = make_state<dim>(which);
           const auto r  = evaluate_contact_law(s, q);
           bool       ok = !r.friction_active && r.r_f.norm() == 0. &&
-                    r.drf_dlambda.norm() == 0. && r.drf_dLambda.norm() == 0.;
+                    r.drf_dLambda.norm() == 0.;
           for (unsigned int k = 0; k < dim - 1; ++k)
             ok = ok && r.dforce_dLambda[k].norm() == 0. &&
                  r.drf_dd[k].norm() == 0.;

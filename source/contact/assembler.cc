@@ -47,7 +47,8 @@ namespace Signorini
                              TrilinosWrappers::SparseMatrix      *matrix,
                              TrilinosWrappers::MPI::Vector       &rhs,
                              TrilinosWrappers::MPI::Vector       &contact_force,
-                             const bool                           new_iterate)
+                             const bool                           new_iterate,
+                             const TrilinosWrappers::MPI::Vector &weight_state)
     {
       ContactStatistics stats;
       // Normal status per node (decided before the point loop: a node's
@@ -85,7 +86,7 @@ namespace Signorini
         {
           if (point.q == 0)
             surfaces.slave_faces()[point.face].cell->get_dof_indices(cell_dofs);
-          evaluate_point(point, cell_dofs, state, start, e);
+          evaluate_point(point, cell_dofs, state, start, weight_state, e);
           record_point_status(point, e, new_iterate, stats);
 
           local_residual(point, state, e, F);
@@ -139,6 +140,7 @@ namespace Signorini
       const std::vector<types::global_dof_index> &cell_dofs,
       const TrilinosWrappers::MPI::Vector        &state,
       const TrilinosWrappers::MPI::Vector        &start,
+      const TrilinosWrappers::MPI::Vector        &weight_state,
       PointEvaluation                            &e)
     {
       const auto        &face = surfaces.slave_faces()[point.face];
@@ -171,6 +173,7 @@ namespace Signorini
       for (unsigned int l = 0; l < e.n_l; ++l)
         {
           s.lambda += psi_c[l] * state[face.lambda_dofs[l]];
+          s.row_lambda += psi_c[l] * weight_state[face.lambda_dofs[l]];
           e.lambda_shown += psi[l] * state[face.lambda_dofs[l]];
           if (e.fric)
             for (unsigned int k = 0; k < dim - 1; ++k)
@@ -247,9 +250,10 @@ namespace Signorini
       e.node_data.resize(e.by_node && e.fric ? e.n_l : 0);
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
-          auto &d  = e.node_data[l];
-          d.status = &node_statuses.friction(face.lambda_dofs[l]);
-          d.lambda = state[face.lambda_dofs[l]];
+          auto &d      = e.node_data[l];
+          d.status     = &node_statuses.friction(face.lambda_dofs[l]);
+          d.lambda     = state[face.lambda_dofs[l]];
+          d.row_lambda = weight_state[face.lambda_dofs[l]];
           for (unsigned int k = 0; k < dim - 1; ++k)
             d.Lambda[k] = state[face.friction_dofs[l * (dim - 1) + k]];
         }

@@ -170,13 +170,14 @@ namespace Signorini
 
 
       // What the stick and slip branches share: the state, the law's
-      // coefficients, P = I - n (x) n, the tangential slip v = P slip and
-      // mu lambda_f (s = -mu lambda_f of section 5).
+      // coefficients, P = I - n (x) n, the tangential slip v = P slip,
+      // mu lambda_f (s = -mu lambda_f of section 5) and the rows' weight
+      // mu lambda_f held at the iterate (mu_lw).
       template <int dim>
       struct FrictionTerms
       {
         const PointState<dim> &state;
-        double                 mu, rho_t, mu_lf;
+        double                 mu, rho_t, mu_lf, mu_lw;
         Tensor<2, dim>         P;
         Tensor<1, dim>         v;
       };
@@ -198,14 +199,12 @@ namespace Signorini
           response.dforce_dLambda[k] = -f.mu_lf * T[k];
         // K_ec threshold coupling: -mu P_B(h).
         response.dforce_dlambda += -f.mu * h;
-        // L_f^f = -w psi mu lambda_f T^T v; K_ff = 0.
+        // L_f^f = -w psi mu lambda_f T^T v (weight held); K_ff = 0.
         for (unsigned int k = 0; k < dim - 1; ++k)
           {
-            response.r_f[k] = -f.mu_lf * (T[k] * f.v);
+            response.r_f[k] = -f.mu_lw * (T[k] * f.v);
             // T^T P = T^T since T is tangent.
-            response.drf_dd[k] = -f.mu_lf * T[k];
-            // K_fc (stick) = -mu T^T v; vanishes at convergence (v = 0).
-            response.drf_dlambda[k] = -f.mu * (T[k] * f.v);
+            response.drf_dd[k] = -f.mu_lw * T[k];
           }
       }
 
@@ -232,19 +231,18 @@ namespace Signorini
         for (unsigned int k = 0; k < dim - 1; ++k)
           response.dforce_dLambda[k] = -mu_lf * (K_B * T[k]);
         response.dforce_dlambda += -f.mu * q;
-        // L_f^f = +w psi (mu lambda_f / rho_t) T^T (T Lambda - h / |h|).
+        // L_f^f = +w psi (mu lambda_f / rho_t) T^T (T Lambda - h / |h|),
+        // the weight mu lambda_f held (mu_lw).
+        const double mu_lw = f.mu_lw;
         for (unsigned int k = 0; k < dim - 1; ++k)
           {
-            const double residual_k = Lambda[k] - T[k] * q;
-            response.r_f[k]         = mu_lf / f.rho_t * residual_k;
+            response.r_f[k] = mu_lw / f.rho_t * (Lambda[k] - T[k] * q);
             // K_fe = -mu lambda_f T^T K_B P (row k: (K_B P)^T tau_k).
-            response.drf_dd[k] = -mu_lf * (T[k] * K_B_P);
+            response.drf_dd[k] = -mu_lw * (T[k] * K_B_P);
             // K_ff = (mu lambda_f / rho_t) T^T (I - K_B) T.
             for (unsigned int l = 0; l < dim - 1; ++l)
               response.drf_dLambda[k][l] =
-                mu_lf / f.rho_t * ((k == l ? 1. : 0.) - T[k] * (K_B * T[l]));
-            // K_fc (slip) = (mu / rho_t) T^T (T Lambda - h / |h|).
-            response.drf_dlambda[k] = f.mu / f.rho_t * residual_k;
+                mu_lw / f.rho_t * ((k == l ? 1. : 0.) - T[k] * (K_B * T[l]));
           }
       }
     } // namespace
@@ -316,6 +314,7 @@ namespace Signorini
                                  parameters.mu,
                                  parameters.rho_t,
                                  parameters.mu * lambda_f,
+                                 parameters.mu * state.row_lambda,
                                  P,
                                  P * state.slip};
       Tensor<1, dim>           T_Lambda;

@@ -102,12 +102,13 @@ namespace Signorini
       PointResponse<dim> r;
       Tensor<1, dim - 1> slip_t; // T^T v
 
-      // Friction status, lambda_l and Lambda_l of the face's multiplier
-      // nodes (node path with friction; empty otherwise).
+      // Friction status, lambda_l, the weight lambda_l of its friction
+      // rows (at the iterate) and Lambda_l of the face's multiplier nodes
+      // (node path with friction; empty otherwise).
       struct NodeData
       {
         const NodeFriction *status;
-        double              lambda;
+        double              lambda, row_lambda;
         Tensor<1, dim - 1>  Lambda;
       };
       std::vector<NodeData> node_data;

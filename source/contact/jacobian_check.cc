@@ -53,6 +53,10 @@ namespace Signorini
       TrilinosWrappers::MPI::Vector force = force_layout;
       contact.assemble(state, step_start, constraints, &K, r0, force);
       K.compress(VectorOperation::add);
+      // The friction rows' weights (the multipliers of the base state) are
+      // held while the state is perturbed: the matrix does not
+      // differentiate them (doc/theory.md section 3.2).
+      const TrilinosWrappers::MPI::Vector weight_state = state;
 
       // Step sizes: 1e-6 of the block's largest magnitude, never below
       // 1e-6 of the floor, so that a block that is zero up to round-off is
@@ -97,10 +101,16 @@ namespace Signorini
           for (const auto &[i, w] : f->second)
             perturbed[i] = base[i] + w * delta;
         perturbed.compress(VectorOperation::insert);
-        state = perturbed;
-        r     = 0;
-        const auto statistics =
-          contact.assemble(state, step_start, constraints, nullptr, r, force);
+        state                 = perturbed;
+        r                     = 0;
+        const auto statistics = contact.assemble(state,
+                                                 step_start,
+                                                 constraints,
+                                                 nullptr,
+                                                 r,
+                                                 force,
+                                                 false,
+                                                 &weight_state);
         r.compress(VectorOperation::add);
         return statistics.n_changed;
       };

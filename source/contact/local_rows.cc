@@ -79,11 +79,12 @@ namespace Signorini
       // Friction rows of a node-status pair, per node: free (or zero
       // threshold) s Lambda_l; stick -mu lambda_l W_l (its weighted slip
       // closed); slip (mu lambda_l / rho_t) D_l (Lambda_l - q_l),
-      // q_l = H_l / |H_l|; each point adds its share w psi_l.
+      // q_l = H_l / |H_l|; each point adds its share w psi_l. The weight
+      // mu lambda_l is held at the iterate (NodeData::row_lambda).
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
           const auto  &nf  = *e.node_data[l].status;
-          const double lam = e.node_data[l].lambda;
+          const double lam = e.node_data[l].row_lambda;
           const auto  &L   = e.node_data[l].Lambda;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
@@ -145,8 +146,6 @@ namespace Signorini
                 sc * w * psi[l] * psi[m] * r.drc_dlambda;
             for (unsigned int k = 0; k < n_t; ++k)
               {
-                K(o_f + l * (dim - 1) + k, o_c + m) =
-                  sf * w * psi[l] * psi[m] * r.drf_dlambda[k];
                 for (unsigned int kk = 0; kk < dim - 1; ++kk)
                   K(o_f + l * (dim - 1) + k, o_f + m * (dim - 1) + kk) =
                     sf * w * psi[l] * psi[m] * r.drf_dLambda[k][kk];
@@ -176,6 +175,7 @@ namespace Signorini
         {
           const auto        &nf  = *e.node_data[l].status;
           const double       lam = e.node_data[l].lambda;
+          const double       lw  = e.node_data[l].row_lambda;
           const auto        &L   = e.node_data[l].Lambda;
           const double       wl  = sf * w * psi_c[l];
           const unsigned int of  = e.o_f + l * (dim - 1);
@@ -201,16 +201,15 @@ namespace Signorini
                       (-law.mu * psi_c[l] * lam * s.tangents[k][comp[a]]);
                 }
             }
+          // The friction rows: their weight mu lambda_l is held, so they
+          // have no lambda_l column.
           if (nf.stick)
             {
               if (point.paired)
                 for (unsigned int k = 0; k < dim - 1; ++k)
-                  {
-                    for (unsigned int a = 0; a < n_u; ++a)
-                      K(of + k, a) +=
-                        wl * (-law.mu * lam) * s.tangents[k][comp[a]] * Nd[a];
-                    K(of + k, e.o_c + l) += wl * (-law.mu * e.slip_t[k]);
-                  }
+                  for (unsigned int a = 0; a < n_u; ++a)
+                    K(of + k, a) +=
+                      wl * (-law.mu * lw) * s.tangents[k][comp[a]] * Nd[a];
               continue;
             }
           // Slip: K_B = (I - q q) / |H|, dH/dLambda_l = I,
@@ -228,16 +227,14 @@ namespace Signorini
             {
               for (unsigned int kk = 0; kk < dim - 1; ++kk)
                 K(of + k, of + kk) +=
-                  wl * law.mu * lam / law.rho_t * ((k == kk) - KB[k][kk]);
-              K(of + k, e.o_c + l) +=
-                wl * law.mu / law.rho_t * (L[k] - nf.H[k] / nH);
+                  wl * law.mu * lw / law.rho_t * ((k == kk) - KB[k][kk]);
               if (point.paired)
                 for (unsigned int a = 0; a < n_u; ++a)
                   {
                     double KBT = 0;
                     for (unsigned int kk = 0; kk < dim - 1; ++kk)
                       KBT += KB[k][kk] * s.tangents[kk][comp[a]];
-                    K(of + k, a) += wl * (-law.mu * lam) * KBT * Nd[a];
+                    K(of + k, a) += wl * (-law.mu * lw) * KBT * Nd[a];
                   }
             }
         }

@@ -298,9 +298,15 @@ namespace Signorini
       query.extend(0.5 * surfaces.pair_scales().face_size[p]);
       const auto hits = faces_meeting(tree, query);
       // Inside projections first (closest), then the smallest violation
-      // within the tolerance.
-      double best_inside = std::numeric_limits<double>::max();
-      double best_violation =
+      // within the tolerance. A point on the edge between two master faces
+      // is equally close to both up to round-off: distances within 1e-10
+      // of the face size are a tie, broken by the lower face index
+      // (partition-independent), so that the round-off of the iterate
+      // (number of ranks, BLAS kernels) does not pick the face and its
+      // normal.
+      const double tie         = 1e-10 * surfaces.pair_scales().face_size[p];
+      double       best_inside = std::numeric_limits<double>::max();
+      double       best_violation =
         parameters.contact.projection_tolerance * (1 + 1e-12);
       FaceProjection<dim> best;
       int                 best_face      = -1;
@@ -315,7 +321,9 @@ namespace Signorini
           const double distance = x_e.distance(proj.x_m);
           if (proj.inside)
             {
-              if (distance < best_inside)
+              if (distance < best_inside - tie ||
+                  (distance <= best_inside + tie && best_is_inside &&
+                   m < static_cast<unsigned int>(best_face)))
                 {
                   best_inside    = distance;
                   best           = proj;

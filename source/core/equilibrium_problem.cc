@@ -260,9 +260,12 @@ namespace Signorini
     bulk_jacobian_ready = false; // the matrix now holds the contact terms
     if (contact.active())
       contact.clear_releases();
-    matrix_roundoff = Solver::absolute_product_norm(system.matrix,
-                                                    system.state,
-                                                    system.mpi_communicator);
+    matrix_roundoff =
+      Solver::absolute_product_norm(system.matrix,
+                                    system.state,
+                                    first_update ? *first_update :
+                                                   system.constraints_update,
+                                    system.mpi_communicator);
     Solver::LinearisedStep step;
     step.held_motions = hold_free_motions(iteration);
     TimerOutput::Scope t(timer, "linear solve");

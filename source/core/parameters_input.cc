@@ -348,7 +348,9 @@ namespace Signorini
         {"Penalty",
          "the penalty law went; contact is always the augmented Lagrangian "
          "law."},
-        {"Threshold coupling", "K_fc is always kept (the exact Jacobian)."},
+        {"Threshold coupling",
+         "the friction rows are weighted by the pressure of the Newton "
+         "iterate, held: no K_fc (doc/theory.md 3.2)."},
         {"Release extrapolation", "release extrapolation is always on."},
         {"Pairing at status changes",
          "the pairing is renewed between Newton solves only."},

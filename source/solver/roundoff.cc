@@ -14,6 +14,7 @@ namespace Signorini
     double
     absolute_product_norm(const TrilinosWrappers::SparseMatrix &K,
                           const TrilinosWrappers::MPI::Vector  &x,
+                          const AffineConstraints<double>      &constraints,
                           const MPI_Comm                        comm)
     {
       if (K.m() == 0)
@@ -27,6 +28,9 @@ namespace Signorini
       double                  sum = 0;
       for (int r = 0; r < A.NumMyRows(); ++r)
         {
+          if (constraints.is_constrained(
+                static_cast<types::global_dof_index>(A.GRID64(r))))
+            continue;
           int     n = 0;
           double *values;
           int    *columns;

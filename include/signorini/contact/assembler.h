@@ -92,21 +92,24 @@ namespace Signorini
                TrilinosWrappers::SparseMatrix      *matrix,
                TrilinosWrappers::MPI::Vector       &rhs,
                TrilinosWrappers::MPI::Vector       &contact_force,
-               const bool                           new_iterate);
+               const bool                           new_iterate,
+               const TrilinosWrappers::MPI::Vector &weight_state);
 
     private:
       // What one point computes on the way to its rows (helpers.h).
       struct PointEvaluation;
 
       /** Point state and law response of @p point at @p state (from
-       * @p start): kinematics, gap, slip, multipliers, the law (or the
-       * node path's), the node friction force and, on a rigid obstacle
-       * with Newton on the geometry, its derivatives. */
+       * @p start): kinematics, gap, slip, multipliers (the friction rows'
+       * weight from @p weight_state), the law (or the node path's), the
+       * node friction force and, on a rigid obstacle with Newton on the
+       * geometry, its derivatives. */
       void
       evaluate_point(ContactPoint                               &point,
                      const std::vector<types::global_dof_index> &cell_dofs,
                      const TrilinosWrappers::MPI::Vector        &state,
                      const TrilinosWrappers::MPI::Vector        &start,
+                     const TrilinosWrappers::MPI::Vector        &weight_state,
                      PointEvaluation                            &e);
 
       /** Counts the status of an evaluated point into @p stats, runs its

@@ -122,6 +122,17 @@ namespace Signorini
       double lambda;
 
       /**
+       * The threshold lambda_f [Pa] that weights the friction law's rows,
+       * (mu lambda_f / rho_t)(T Lambda - P_B(h)): lambda at the Newton
+       * iterate (doc/theory.md section 3.2, "Row weight of the friction
+       * law"). A weight, not an unknown of the law: the rows have no
+       * derivative in lambda through it. Their solution (stick: v = 0;
+       * slip: T Lambda = q) does not depend on it. The traction
+       * mu lambda_f P_B(h) takes lambda itself. Ignored if mu == 0.
+       */
+      double row_lambda = 0.;
+
+      /**
        * Friction semi-multiplier Lambda [-] in tangent coordinates. Ignored if
        * mu == 0.
        */
@@ -178,7 +189,8 @@ namespace Signorini
      *   K_ce = +w psi_l N^e_j drc_dd ; K_cm = -w psi_l N^m_j drc_dd ;
      *   K_cc = +w psi_l psi_m drc_dlambda ;  K_cf = 0 ;
      *   K_fe = +w psi_l N^e_j drf_dd[k] (row k) ; K_fm = -... ;
-     *   K_fc = +w psi_l psi_m drf_dlambda ; K_ff = +w psi_l psi_m drf_dLambda.
+     *   K_fc = 0 (the rows' weight is held: PointState::row_lambda) ;
+     *   K_ff = +w psi_l psi_m drf_dLambda.
      *
      * Units (lambda in [Pa], d in [m]): force [Pa], r_c [m], r_f [Pa m] if
      * the point has an active friction law, [-] otherwise (Lambda itself).
@@ -261,11 +273,6 @@ namespace Signorini
        * drf_dd[k] = d (r_f)_k / d d: row k of the (dim-1) x dim block.
        */
       std::array<Tensor<1, dim>, dim - 1> drf_dd;
-
-      /**
-       * d r_f / d lambda.
-       */
-      Tensor<1, dim - 1> drf_dlambda;
 
       /**
        * drf_dLambda[k][l] = d (r_f)_k / d Lambda_l.

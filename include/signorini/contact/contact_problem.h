@@ -200,7 +200,11 @@ namespace Signorini
        * evaluating the law of every contact point at @p state; @p
        * step_start is the state at the start of the load step (slip
        * increments). The physical contact force on the displacement DoFs is
-       * added into @p contact_force (for reactions).
+       * added into @p contact_force (for reactions). The friction rows
+       * are weighted by the multipliers of @p weight_state (nullptr:
+       * @p state), which the matrix does not differentiate (doc/theory.md
+       * section 3.2, "Row weight of the friction law"); the Jacobian check
+       * holds them at its base state.
        */
       ContactStatistics
       assemble(const TrilinosWrappers::MPI::Vector &state,
@@ -209,7 +213,8 @@ namespace Signorini
                TrilinosWrappers::SparseMatrix      *matrix,
                TrilinosWrappers::MPI::Vector       &rhs,
                TrilinosWrappers::MPI::Vector       &contact_force,
-               const bool                           new_iterate = false)
+               const bool                           new_iterate  = false,
+               const TrilinosWrappers::MPI::Vector *weight_state = nullptr)
       {
         return assembler.assemble(state,
                                   step_start,
@@ -217,7 +222,8 @@ namespace Signorini
                                   matrix,
                                   rhs,
                                   contact_force,
-                                  new_iterate);
+                                  new_iterate,
+                                  weight_state ? *weight_state : state);
       }
 
       /** Anti-cycling within a Newton solve and at its convergence
