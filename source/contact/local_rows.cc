@@ -83,14 +83,14 @@ namespace Signorini
       // mu lambda_l is held at the iterate (NodeData::row_lambda).
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
-          const auto  &nf  = *e.node_data[l].status;
-          const double lam = e.node_data[l].row_lambda;
-          const auto  &L   = e.node_data[l].Lambda;
+          const auto  &nf = *e.node_data[l].status;
+          const double lw = e.node_data[l].row_lambda;
+          const auto  &L  = e.node_data[l].Lambda;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
               const double r_f = !nf.active ? law.free_friction_scale * L[k] :
-                                 nf.stick   ? -law.mu * lam * e.slip_t[k] :
-                                              law.mu * lam / law.rho_t *
+                                 nf.stick   ? -law.mu * lw * e.slip_t[k] :
+                                              law.mu * lw / law.rho_t *
                                               (L[k] - nf.H[k] / nf.H.norm());
               F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
             }
