@@ -574,10 +574,13 @@ namespace Signorini
                       "true",
                       Patterns::Bool(),
                       "Also refine every cell with a face in the active "
-                      "contact zone: slave faces with a point in contact "
-                      "and the master faces those points are paired with. "
-                      "The Kelly indicator alone ignores the contact "
-                      "traction, which acts on boundary faces.");
+                      "contact zone (slave faces with a point in contact "
+                      "and the master faces those points are paired with) "
+                      "and every coarser cell whose centre lies within its "
+                      "own diameter of a zone cell, so that each coarser "
+                      "level lies two cells deep under the zone. The Kelly "
+                      "indicator alone ignores the contact traction, which "
+                      "acts on boundary faces.");
     prm.declare_entry("Maximum level",
                       "0",
                       Patterns::Integer(0, 30),

@@ -1,10 +1,12 @@
 // Adaptive refinement within and between load steps and the transfer of
 // the state to the new mesh.
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/rtree.h>
 
 #include <signorini/core/errors.h>
 #include <signorini/core/simulation.h>
@@ -15,9 +17,73 @@
 
 namespace Signorini
 {
+  namespace
+  {
+    // Flags for refinement the cells of the active contact zone and every
+    // coarser cell whose centre lies within its own diameter of a zone cell
+    // (of the ball around the zone cell's centre with half its diameter): the
+    // zone sits on two cells per coarser level, not on one. Under a one-cell
+    // skin the nodal pressure carried the period of the coarse cells beneath,
+    // and p0 stalled (doc/performance.md, "Adaptive marking"). The zone cells
+    // of every rank are seen, so the flags do not depend on the partition.
+    template <int dim>
+    void
+    mark_contact_zone(
+      const std::vector<typename DoFHandler<dim>::active_cell_iterator> &zone,
+      parallel::distributed::Triangulation<dim> &triangulation,
+      const MPI_Comm                             comm)
+    {
+      std::vector<double> local; // per zone cell: centre, diameter, level
+      for (const auto &cell : zone)
+        {
+          cell->clear_coarsen_flag();
+          cell->set_refine_flag();
+          for (unsigned int d = 0; d < dim; ++d)
+            local.push_back(cell->center()[d]);
+          local.push_back(cell->diameter());
+          local.push_back(cell->level());
+        }
+      std::vector<std::pair<Point<dim>, unsigned int>> centres;
+      std::vector<std::pair<double, unsigned int>>     size_level;
+      double                                           largest = 0;
+      for (const auto &part : Utilities::MPI::all_gather(comm, local))
+        for (std::size_t k = 0; k + dim + 1 < part.size(); k += dim + 2)
+          {
+            Point<dim> z;
+            for (unsigned int d = 0; d < dim; ++d)
+              z[d] = part[k + d];
+            centres.emplace_back(z, size_level.size());
+            size_level.emplace_back(
+              part[k + dim], static_cast<unsigned int>(part[k + dim + 1]));
+            largest = std::max(largest, part[k + dim]);
+          }
+      const auto tree = pack_rtree(centres);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned() && !cell->refine_flag_set())
+          {
+            const Point<dim> c = cell->center();
+            const double     h = cell->diameter();
+            BoundingBox<dim> around(std::make_pair(c, c));
+            around.extend(h + 0.5 * largest);
+            for (const auto &[z, k] :
+                 tree | boost::geometry::index::adaptors::queried(
+                          boost::geometry::index::intersects(around)))
+              if (size_level[k].second >
+                    static_cast<unsigned int>(cell->level()) &&
+                  c.distance(z) - 0.5 * size_level[k].first < h)
+                {
+                  cell->clear_coarsen_flag();
+                  cell->set_refine_flag();
+                  break;
+                }
+          }
+    }
+  } // namespace
+
+
   // Adaptive refinement: the Kelly indicator of the displacement, weighted
   // to the energy norm of each cell's material, marks a fixed fraction of
-  // the cells; the active contact zone is always refined. The converged
+  // the cells; the active contact zone is always refined, graded. The converged
   // state and the state at the start of the step (displacements, and the
   // multipliers as a nodal field on the slave surface) are interpolated to
   // the new mesh.
@@ -63,11 +129,9 @@ namespace Signorini
         a.refinement_fraction,
         a.coarsening_fraction);
       if (a.refine_contact_zone && contact.active())
-        for (const auto &cell : contact.contact_output().contact_zone_cells())
-          {
-            cell->clear_coarsen_flag();
-            cell->set_refine_flag();
-          }
+        mark_contact_zone(contact.contact_output().contact_zone_cells(),
+                          system.triangulation,
+                          mpi_communicator);
       for (const auto &cell : system.triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
