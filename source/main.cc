@@ -6,6 +6,8 @@
 #include <signorini/core/parameters.h>
 #include <signorini/core/simulation.h>
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -56,6 +58,35 @@ namespace
     setenv("OMPI_MCA_pml", "ob1", 0);
     setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   }
+
+
+  // OpenBLAS chooses its kernels from the CPU model when it is loaded,
+  // before main(). A model it does not know (Debian 12 ships 0.3.21; recent
+  // Xeons) gets the generic 'Prescott' kernels: MUMPS's dense fronts then
+  // run 2.4 times slower than with the AVX-512 ones (3D Hertz, 62k DoFs,
+  // doc/performance.md). The choice cannot be changed once loaded, so the
+  // run says how to change it; scripts/ set it themselves.
+  std::string
+  blas_kernel_note()
+  {
+    using Name = char *(*)();
+    const auto name =
+      reinterpret_cast<Name>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+    if (name == nullptr || std::getenv("OPENBLAS_CORETYPE") != nullptr ||
+        std::string(name()) != "Prescott")
+      return "";
+    __builtin_cpu_init();
+    const char *better = __builtin_cpu_supports("avx512f") ? "SkylakeX" :
+                         __builtin_cpu_supports("avx2")    ? "Haswell" :
+                                                             nullptr;
+    if (better == nullptr)
+      return "";
+    return std::string("signorini: note: OpenBLAS does not know this CPU and "
+                       "runs its generic 'Prescott' kernels; the direct "
+                       "solver runs faster with\n  export "
+                       "OPENBLAS_CORETYPE=") +
+           better + "\n(scripts/run and scripts/benchmark set it).\n";
+  }
 } // namespace
 
 int
@@ -92,6 +123,8 @@ main(int argc, char *argv[])
   singleton_defaults();
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  if (root)
+    std::cout << blas_kernel_note() << std::flush;
 
   try
     {
