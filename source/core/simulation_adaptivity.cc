@@ -19,13 +19,14 @@ namespace Signorini
 {
   namespace
   {
-    // Flags for refinement the cells of the active contact zone and every
-    // coarser cell whose centre lies within its own diameter of a zone cell
-    // (of the ball around the zone cell's centre with half its diameter): the
-    // zone sits on two cells per coarser level, not on one. Under a one-cell
-    // skin the nodal pressure carried the period of the coarse cells beneath,
-    // and p0 stalled (doc/performance.md, "Adaptive marking"). The zone cells
-    // of every rank are seen, so the flags do not depend on the partition.
+    // Sets the refinement flag of every cell of the active contact zone and
+    // of every coarser cell whose centre lies within its own diameter of a
+    // zone cell (of the ball around the zone cell's centre with half its
+    // diameter): each coarser level lies two cells deep under the zone.
+    // Under a one-cell skin the nodal pressure carried the period of the
+    // coarse cells beneath, and p0 stalled (doc/performance.md, "Adaptive
+    // marking"). The zone cells of every rank are seen, so the flags do not
+    // depend on the partition.
     template <int dim>
     void
     mark_contact_zone(
@@ -83,10 +84,10 @@ namespace Signorini
 
   // Adaptive refinement: the Kelly indicator of the displacement, weighted
   // to the energy norm of each cell's material, marks a fixed fraction of
-  // the cells; the active contact zone is always refined, graded. The converged
-  // state and the state at the start of the step (displacements, and the
-  // multipliers as a nodal field on the slave surface) are interpolated to
-  // the new mesh.
+  // the cells; the active contact zone is always refined, graded. The
+  // converged state and the state at the start of the step (displacements,
+  // and the multipliers as a nodal field on the slave surface) are
+  // interpolated to the new mesh.
   template <int dim>
   bool
   Simulation<dim>::adapt_mesh(const double time, const double step_start_time)
