@@ -65,7 +65,8 @@ namespace
   // Xeons) gets the generic 'Prescott' kernels: MUMPS's dense fronts then
   // run 2.4 times slower than with the AVX-512 ones (3D Hertz, 62k DoFs,
   // doc/performance.md). The choice cannot be changed once loaded, so the
-  // run says how to change it; scripts/ set it themselves.
+  // run (and --help, on standard error) says how to change it;
+  // scripts/blas-coretype reads that and sets it.
   std::string
   blas_kernel_note()
   {
@@ -99,7 +100,10 @@ main(int argc, char *argv[])
   if (args.empty() || args[0] == "-h" || args[0] == "--help")
     {
       if (first_rank())
-        print_usage(args.empty() ? std::cerr : std::cout);
+        {
+          print_usage(args.empty() ? std::cerr : std::cout);
+          std::cerr << blas_kernel_note();
+        }
       return args.empty() ? 1 : 0;
     }
   if (args[0] == "--print-parameters")
