@@ -379,6 +379,15 @@ namespace Signorini
         // side only: the matrix is the same.
         if (materials_linear)
           {
+            // A new layout: the copy takes the matrix's pattern first, so
+            // that copy_from() copies values only, on every rank alike.
+            // deal.II 9.4's copy_from() decides per rank whether the
+            // columns of the old copy still match (a rank whose part of
+            // the contact couplings moved copies the layout, the others
+            // only the values), and the two paths reach different
+            // collective calls (an Epetra assertion at load step 12 of
+            // prm/cattaneo_mindlin_2d.prm on 2 ranks).
+            linear_bulk_matrix.reinit(system.matrix);
             linear_bulk_matrix.copy_from(system.matrix);
             linear_bulk_layout = system.layout_count;
           }

@@ -164,29 +164,21 @@ namespace Signorini
       owned[i] = factor != 0 ? system.state[i] + factor * last_increment[i] :
                                static_cast<double>(system.state[i]);
     owned.compress(VectorOperation::insert);
-    // A nonlinear bulk is evaluated at equilibrium-like states only: the
-    // prescribed values are reached by the first Newton update, which
-    // carries their increments through the Jacobian at the predictor (as
-    // deal.II's step-44 applies its Dirichlet increments). Moving the
-    // Dirichlet nodes alone would strain the cells next to them as no
-    // equilibrium does, and a plastic body would yield there in the
-    // predictor. The predictor satisfies the homogeneous relations (hanging
-    // nodes, multiplier lines) as a combination of converged states.
-    bool first_update = false;
-    if (!equilibrium.linear_bulk())
-      {
-        system.state = owned;
-        first_update =
-          system.make_first_update_constraints(contact,
-                                               system.state_step_start);
-      }
-    if (!first_update)
-      {
-        system.constraints_values.distribute(owned);
-        system.state = owned;
-      }
-    equilibrium.impose_in_first_update(
-      first_update ? &system.constraints_first : nullptr);
+    // A linear bulk takes the Dirichlet values of the new time in the
+    // predictor. A nonlinear bulk is evaluated at equilibrium-like states
+    // only: the prescribed values are reached by the step's first Newton
+    // update (arm_first_update()), which carries their increments through
+    // the Jacobian at the predictor (as deal.II's step-44 applies its
+    // Dirichlet increments). Moving the Dirichlet nodes alone would strain
+    // the cells next to them as no equilibrium does, and a plastic body
+    // would yield there in the predictor. The predictor satisfies the
+    // homogeneous relations (hanging nodes, multiplier lines) as a
+    // combination of converged states.
+    if (equilibrium.linear_bulk())
+      system.constraints_values.distribute(owned);
+    system.state   = owned;
+    values_pending = !equilibrium.linear_bulk();
+    equilibrium.impose_in_first_update(nullptr);
     system.update_solution();
   }
 
@@ -326,6 +318,9 @@ namespace Signorini
           // Hanging and excluded multipliers follow their constraint lines
           // from the start: Newton updates are distributed with
           // homogeneous lines, so a start off the lines would stay off.
+          // This also puts the Dirichlet DoFs of a nonlinear bulk at their
+          // values: the step's first update (arm_first_update(), after
+          // this) then has none left to move.
           system.constraints_values.distribute(owned);
           system.state  = owned;
           first_pairing = false;
@@ -390,12 +385,41 @@ namespace Signorini
   }
 
 
+  // The first Newton update of the step moves the Dirichlet DoFs from
+  // where they are now (the predictor, with the initial multipliers of a
+  // first pairing) to their values at the step's time: the constraints of
+  // that update are taken from the state the Newton solve starts from, so
+  // that the increment is applied once, whatever wrote the state before.
+  template <int dim>
+  void
+  LoadStep<dim>::arm_first_update()
+  {
+    values_pending = false;
+    const bool first_update =
+      system.make_first_update_constraints(contact, system.state_step_start);
+    if (first_update)
+      equilibrium.impose_in_first_update(&system.constraints_first);
+    else
+      {
+        // Already at the values (to round-off): put them on exactly.
+        TrilinosWrappers::MPI::Vector owned(system.owned_system,
+                                            system.mpi_communicator);
+        owned = system.state;
+        system.constraints_values.distribute(owned);
+        system.state = owned;
+        system.update_solution();
+      }
+  }
+
+
   // One Newton solve of the current pairing (Solver::NewtonSolver, with
   // the EquilibriumProblem as its problem).
   template <int dim>
   bool
   LoadStep<dim>::newton(unsigned int &iterations, const double tolerance)
   {
+    if (values_pending)
+      arm_first_update();
     Solver::NewtonSolver::Parameters p;
     p.max_iterations     = parameters.newton.max_iterations;
     p.relative_tolerance = parameters.newton.relative_tolerance;

@@ -121,6 +121,10 @@ namespace Signorini
      * tolerance if it was handed over at @p handover > 0. */
     bool
     finish_geometric_loop(const double handover, unsigned int &iterations);
+    /** The step's first Newton update moves the Dirichlet DoFs from the
+     * current state to their values (a nonlinear bulk; see start()). */
+    void
+    arm_first_update();
     /** Newton solve on the current pairing; @p tolerance > 0 replaces
      * 'Relative tolerance' once the statuses have settled (a solve that
      * hands over to a new pairing). */
@@ -153,7 +157,11 @@ namespace Signorini
     TrilinosWrappers::MPI::Vector last_converged;
     bool                          none_converged = true;
     bool                          first_pairing  = true;
-    double                        force_scale    = 0;
+    // The Dirichlet values of the step are still to be reached by the
+    // first Newton update (a nonlinear bulk): set by start(), consumed by
+    // arm_first_update() before the step's first Newton solve.
+    bool   values_pending = false;
+    double force_scale    = 0;
     // The result of the last newton() call, and why the last newton() or
     // solve() call failed.
     Solver::NewtonSolver::Result last_newton;
