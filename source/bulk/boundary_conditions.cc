@@ -2,6 +2,8 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/component_mask.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <signorini/bulk/boundary_conditions.h>
@@ -52,18 +54,21 @@ namespace Signorini
       };
 
 
+      // A Cartesian value u_dof = value; false if the DoF is constrained
+      // already (a hanging node, an earlier condition).
       template <int dim>
-      void
+      bool
       add_line(const types::global_dof_index dof,
                const double                  value,
                AffineConstraints<double>    &values,
                AffineConstraints<double>    &update)
       {
         if (values.is_constrained(dof))
-          return;
+          return false;
         values.add_line(dof);
         values.set_inhomogeneity(dof, value);
         update.add_line(dof);
+        return true;
       }
 
 
@@ -116,6 +121,18 @@ namespace Signorini
         double                                    g = 0;
       };
 
+      // The coefficients of @p relation along the components of @p node.
+      template <int dim>
+      Tensor<1, dim>
+      along(const Relation &relation, const Node<dim> &node)
+      {
+        Tensor<1, dim> a;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (const auto i = relation.a.find(node[c]); i != relation.a.end())
+            a[c] = i->second;
+        return a;
+      }
+
       // Adds @p relation among the DoFs of @p node as a constraint line:
       // the node's DoFs constrained already (by earlier conditions) are
       // eliminated from it first, then it is solved for the free DoF with
@@ -124,13 +141,20 @@ namespace Signorini
       // without a cycle. A relation that earlier lines imply adds nothing;
       // a node whose DoF is constrained from outside the node (a hanging
       // node) keeps its lines, as for Cartesian values.
+      //
+      // Returns the line added, as u_pivot = sum_j w_j u_j + g: the pivot
+      // and its entries (pivot invalid_dof_index: none added).
       template <int dim>
-      void
+      std::pair<types::global_dof_index,
+                std::vector<std::pair<types::global_dof_index, double>>>
       add_relation(Relation                   relation,
                    const Node<dim>           &node,
                    AffineConstraints<double> &values,
                    AffineConstraints<double> &update)
       {
+        std::pair<types::global_dof_index,
+                  std::vector<std::pair<types::global_dof_index, double>>>
+               added{numbers::invalid_dof_index, {}};
         double scale = 0;
         for (const auto &[i, a] : relation.a)
           scale = std::max(scale, std::abs(a));
@@ -143,7 +167,7 @@ namespace Signorini
                   const auto *entries = values.get_constraint_entries(i);
                   for (const auto &[j, w] : *entries)
                     if (std::find(node.begin(), node.end(), j) == node.end())
-                      return; // hanging
+                      return added; // hanging
                   relation.g -= a * values.get_inhomogeneity(i);
                   relation.a.erase(i);
                   for (const auto &[j, w] : *entries)
@@ -161,17 +185,20 @@ namespace Signorini
               pivot   = i;
             }
         if (pivot == numbers::invalid_dof_index)
-          return;
+          return added;
         const double a_p = relation.a[pivot];
         values.add_line(pivot);
         update.add_line(pivot);
+        added.first = pivot;
         for (const auto &[i, a] : relation.a)
           if (i != pivot && a != 0)
             {
               values.add_entry(pivot, i, -a / a_p);
               update.add_entry(pivot, i, -a / a_p);
+              added.second.emplace_back(i, -a / a_p);
             }
         values.set_inhomogeneity(pivot, relation.g / a_p);
+        return added;
       }
     } // namespace
 
@@ -267,7 +294,10 @@ namespace Signorini
       AffineConstraints<double> &update)
     {
       const IndexSet &owned = dof_handler.locally_owned_dofs();
+      locally_owned         = owned;
       dirichlet_dofs.assign(parameters.dirichlet.size(), {});
+      held_nodes.clear();
+      held_index.clear();
       for (unsigned int k = 0; k < parameters.dirichlet.size(); ++k)
         {
           const auto &d = parameters.dirichlet[k];
@@ -304,24 +334,40 @@ namespace Signorini
                                                    on_boundary,
                                                    boundary_values,
                                                    ComponentMask(mask));
-          for (const auto &[dof, value] : boundary_values)
-            add_line<dim>(dof, value, values, update);
-
           const std::set<types::boundary_id> ids(d.boundary_ids.begin(),
                                                  d.boundary_ids.end());
+          std::map<types::global_dof_index, unsigned int> component_of;
           for (const auto c : d.components)
             {
               std::vector<bool> component(dim, false);
               component[c] = true;
-              IndexSet dofs =
+              const IndexSet dofs =
                 DoFTools::extract_boundary_dofs(dof_handler,
                                                 ComponentMask(component),
                                                 ids);
-              dofs = dofs & owned;
               for (const auto dof : dofs)
-                dirichlet_dofs[k].emplace_back(dof, c);
+                {
+                  component_of[dof] = c;
+                  if (owned.is_element(dof))
+                    dirichlet_dofs[k].emplace_back(dof, c);
+                }
             }
           std::sort(dirichlet_dofs[k].begin(), dirichlet_dofs[k].end());
+          // The node of each DoF: its support force is shared among the
+          // conditions that hold the node (supports()).
+          std::map<types::global_dof_index, Node<dim>> node_of;
+          for (const auto &[node, point] :
+               boundary_nodes(mapping, dof_handler, d.boundary_ids))
+            for (const auto dof : node)
+              node_of[dof] = node;
+          for (const auto &[dof, value] : boundary_values)
+            if (add_line<dim>(dof, value, values, update) &&
+                component_of.count(dof) > 0 && node_of.count(dof) > 0)
+              {
+                Tensor<1, dim> a;
+                a[component_of[dof]] = 1;
+                hold(k, node_of[dof], a);
+              }
         }
     }
 
@@ -350,14 +396,21 @@ namespace Signorini
                 if (face->vertex(v).distance(point) <= tolerance)
                   for (unsigned int i = 0; i < d.components.size(); ++i)
                     {
-                      const unsigned int c   = d.components[i];
-                      const auto         dof = face->vertex_dof_index(v, c);
-                      add_line<dim>(dof,
-                                    f.value(face->vertex(v), i),
-                                    values,
-                                    update);
+                      const unsigned int c     = d.components[i];
+                      const auto         dof   = face->vertex_dof_index(v, c);
+                      const bool         added = add_line<dim>(
+                        dof, f.value(face->vertex(v), i), values, update);
                       if (owned.is_element(dof))
                         dirichlet_dofs[k].emplace_back(dof, c);
+                      if (added)
+                        {
+                          Node<dim> node;
+                          for (unsigned int j = 0; j < dim; ++j)
+                            node[j] = face->vertex_dof_index(v, j);
+                          Tensor<1, dim> a;
+                          a[c] = 1;
+                          hold(k, node, a);
+                        }
                       ++found;
                     }
       if (Utilities::MPI::sum(found, dof_handler.get_communicator()) == 0)
@@ -429,7 +482,9 @@ namespace Signorini
                      *lines.get_constraint_entries(node[c]))
                   relation.a[j] -= w;
                 relation.g = lines.get_inhomogeneity(node[c]);
-                add_relation<dim>(relation, node, values, update);
+                if (add_relation<dim>(relation, node, values, update).first !=
+                    numbers::invalid_dof_index)
+                  hold(k, node, along<dim>(relation, node));
               }
           else if (constrained.size() > 1)
             for (unsigned int c = 0; c < dim; ++c)
@@ -437,7 +492,9 @@ namespace Signorini
                 Relation relation; // an edge: u = v
                 relation.a[node[c]] = 1;
                 relation.g          = v.value(point, c);
-                add_relation<dim>(relation, node, values, update);
+                if (add_relation<dim>(relation, node, values, update).first !=
+                    numbers::invalid_dof_index)
+                  hold(k, node, along<dim>(relation, node));
               }
           else
             {
@@ -457,7 +514,9 @@ namespace Signorini
                     relation.a[node[i]] = 1;
                     relation.a[node[c]] = w[i];
                     relation.g = v.value(point, i) + w[i] * v.value(point, c);
-                    add_relation<dim>(relation, node, values, update);
+                    if (add_relation<dim>(relation, node, values, update)
+                          .first != numbers::invalid_dof_index)
+                      hold(k, node, along<dim>(relation, node));
                   }
             }
         }
@@ -488,9 +547,27 @@ namespace Signorini
           for (unsigned int j = 0; j < dim; ++j)
             relation.a[node[j]] = n[j];
           relation.g = dirichlet_functions[k]->value(point, 0);
-          add_relation<dim>(relation, node, values, update);
+          if (add_relation<dim>(relation, node, values, update).first !=
+              numbers::invalid_dof_index)
+            hold(k, node, along<dim>(relation, node));
         }
       record_node_dofs(k, nodes, dof_handler.locally_owned_dofs());
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::hold(
+      const unsigned int                              k,
+      const std::array<types::global_dof_index, dim> &node,
+      const Tensor<1, dim>                           &a)
+    {
+      if (!locally_owned.is_element(node[0]))
+        return;
+      const auto [it, added] = held_index.emplace(node, held_nodes.size());
+      if (added)
+        held_nodes.push_back({node, {}});
+      held_nodes[it->second].relations.emplace_back(k, a);
     }
 
 
@@ -522,12 +599,38 @@ namespace Signorini
       Supports<dim>      s{std::vector<Tensor<1, dim>>(n),
                       std::vector<Tensor<1, dim>>(n),
                       std::vector<std::array<bool, dim>>(n)};
+      // The support force f at a node held by conditions with relations
+      // a_k . u = g_k (a Cartesian value: a_k = e_c) is the sum of their
+      // forces mu_k a_k: the equilibrium of the node's free motions (those
+      // with a_k . v = 0 for all k) puts f in the span of the a_k. Solving
+      // (A^T A) mu = A^T f charges each condition its own part, whatever
+      // the order in which the lines were added and which DoF each was
+      // solved for; the reactions sum to the total support force.
+      for (const auto &held : held_nodes)
+        {
+          const unsigned int m = held.relations.size();
+          Tensor<1, dim>     f;
+          for (unsigned int c = 0; c < dim; ++c)
+            f[c] = support_force[held.dofs[c]];
+          FullMatrix<double> G(m, m);
+          Vector<double>     rhs(m), mu(m);
+          for (unsigned int i = 0; i < m; ++i)
+            {
+              rhs(i) = held.relations[i].second * f;
+              for (unsigned int j = 0; j < m; ++j)
+                G(i, j) = held.relations[i].second * held.relations[j].second;
+            }
+          G.gauss_jordan();
+          G.vmult(mu, rhs);
+          for (unsigned int i = 0; i < m; ++i)
+            s.reactions[held.relations[i].first] +=
+              mu(i) * held.relations[i].second;
+        }
       for (unsigned int k = 0; k < n; ++k)
         {
           Tensor<1, dim> count;
           for (const auto &[dof, component] : dirichlet_dofs[k])
             {
-              s.reactions[k][component] += support_force[dof];
               s.displacement[k][component] += solution[dof];
               count[component] += 1;
             }

@@ -8,6 +8,7 @@
 #include <signorini/postprocess/output_files.h>
 #include <signorini/postprocess/results.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <limits>
@@ -92,6 +93,7 @@ namespace Signorini
       force_scale = force_level;
       compute_reactions();
       run_postprocessors(step, time);
+      check_force_balance();
       report.append_newton_history();
       const std::string statistics_lines = report_step(step, time, iterations);
       if (contact.active() && parameters.output.write_csv)
@@ -141,6 +143,76 @@ namespace Signorini
                                               system.solution,
                                               force_scale,
                                               system.mpi_communicator);
+    }
+
+
+    // Sum over the DoFs of R = F_int - F_ext + F_contact: the reactions
+    // where supports hold the body, zero elsewhere at equilibrium; the
+    // internal forces of a body sum to zero (its stress does no work in a
+    // rigid translation). So sum_k reaction_k + sum F_ext - sum F_contact
+    // = 0, where the reactions are charged to the constraint lines of the
+    // conditions (BoundaryConditions::supports()) and F_ext, F_contact are
+    // summed over every DoF: a support force counted twice or left out,
+    // or a load missing at the constrained DoFs, breaks it.
+    template <int dim>
+    void
+    Results<dim>::check_force_balance()
+    {
+      Tensor<1, dim>            loads, contact_forces, reactions;
+      std::vector<unsigned int> component(system.dof_handler.n_dofs(), 0);
+      {
+        std::vector<types::global_dof_index> dofs(system.fe.n_dofs_per_cell());
+        for (const auto &cell : system.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (system.fe.system_to_component_index(i).first < dim)
+                  component[dofs[i]] =
+                    system.fe.system_to_component_index(i).first;
+            }
+      }
+      for (const auto i : system.locally_owned)
+        {
+          loads[component[i]] += system.external_force[i];
+          contact_forces[component[i]] += system.contact_force[i];
+        }
+      loads = Utilities::MPI::sum(loads, system.mpi_communicator);
+      contact_forces =
+        Utilities::MPI::sum(contact_forces, system.mpi_communicator);
+      for (const auto &r : supports.reactions)
+        reactions += r;
+      const double tolerance = 1e-6;
+      double       worst     = 0;
+      for (unsigned int d = parameters.axisymmetric ? 1 : 0; d < dim; ++d)
+        worst = std::max(worst,
+                         std::abs(reactions[d] + loads[d] - contact_forces[d]));
+      // Below the force of a strain of 1e-12 on the model's size the
+      // forces are round-off (a rigid motion: force level and reactions
+      // both of order eps E h^(dim-1)).
+      double stiffest = 0;
+      for (const auto &m : parameters.materials)
+        stiffest = std::max(stiffest, m.youngs_modulus);
+      const double floor =
+        1e-12 * stiffest * std::pow(system.model_size, dim - 1);
+      if (worst <= tolerance * force_scale + floor)
+        return;
+      const double       error = force_scale > 0 ? worst / force_scale : worst;
+      std::ostringstream text;
+      text << std::scientific << std::setprecision(4)
+           << "force balance of the bodies: reactions " << reactions
+           << " + loads " << loads << " - contact forces of the "
+           << "rigid obstacles " << contact_forces << " = "
+           << reactions + loads - contact_forces << std::setprecision(1) << ", "
+           << error << " of the force level (tolerance " << tolerance
+           << "): FAIL";
+      CheckResult check;
+      check.what      = "force balance";
+      check.error     = error;
+      check.tolerance = tolerance;
+      check.pass      = false;
+      check.text      = text.str();
+      step_checks.push_back(check);
     }
 
 

@@ -167,8 +167,31 @@ namespace Signorini
       std::vector<std::unique_ptr<FunctionParser<dim>>> neumann_functions;
       BodyForces<dim>                                   body_force_functions;
       bool                                              any_body_force = false;
+      /** Records that condition @p k holds @p node (its DoFs, one per
+       * component) by a line with coefficients @p a (a . u = g), if this
+       * rank owns the node. */
+      void
+      hold(const unsigned int                              k,
+           const std::array<types::global_dof_index, dim> &node,
+           const Tensor<1, dim>                           &a);
+
+      // A node held by Dirichlet lines, and the (condition, coefficient
+      // vector) of each line added there (a node that an earlier condition
+      // holds already gets no line of a later one along the same
+      // direction): supports() shares its support force among them.
+      struct HeldNode
+      {
+        std::array<types::global_dof_index, dim>             dofs;
+        std::vector<std::pair<unsigned int, Tensor<1, dim>>> relations;
+      };
+      // The locally owned held nodes, and their index by DoFs; written by
+      // add_dirichlet_constraints() only.
+      std::vector<HeldNode> held_nodes;
+      std::map<std::array<types::global_dof_index, dim>, std::size_t>
+               held_index;
+      IndexSet locally_owned;
       // Per Dirichlet condition: the locally owned (DoF, component) pairs
-      // it constrains, sorted.
+      // of its boundaries (the mean displacement), sorted.
       std::vector<std::vector<std::pair<types::global_dof_index, unsigned int>>>
         dirichlet_dofs;
     };

@@ -69,6 +69,13 @@ namespace Signorini
     private:
       void
       compute_reactions();
+      /** The balance of the bodies, summed over them: the reactions of
+       * all supports, the loads and the forces of the rigid obstacles
+       * cancel (a body's internal forces sum to zero; in an axisymmetric
+       * model along the axis only). A FAIL check if they do not, to
+       * 1e-6 of the force level; nothing printed if they do. */
+      void
+      check_force_balance();
       /** Displacement component at a point of a body. */
       double
       point_value(const Point<dim> &p, const unsigned int component) const;
