@@ -26,8 +26,10 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(TOP, "scripts"))
 sys.dont_write_bytecode = True
 import evaluate  # noqa: E402
+from prm_edit import absolute_paths, edit_prm  # noqa: E402
 
 PYTHON = "/usr/bin/python3"
 ZONE = 0.0055  # contact zone of the GetFEM size function [m], 1.25 a
@@ -85,19 +87,21 @@ def run_signorini(binary, element, strategy, params, scratch):
     shutil.rmtree(outdir, ignore_errors=True)
     prm = os.path.join(scratch, "signorini.prm")
     log = os.path.join(scratch, "signorini.log")
+    # The scene with each entry set once (the program refuses an entry set
+    # twice): scripts/prm_edit.py, as scripts/prm-set.
+    sets = ["Finite element/Degree=%s" % element[1],
+            "Geometry/Global refinements=%d" % glevel]
+    if strategy in DISC:
+        sets += ["Geometry/Local refinements=%d" % level,
+                 "Geometry/Refinement region=%s" % DISC[strategy]]
+        mesh = "G%d L%d" % (glevel, level)
+    else:
+        sets += ["Geometry/Local refinements=0", "Adaptive refinement/Cycles=%d" % level]
+        mesh = "G%d, %d cycles" % (glevel, level)
+    sets.append("Output/Directory=%s" % outdir)
+    lines = absolute_paths(open(os.path.join(HERE, "signorini_hertz_2d.prm")).read().splitlines(), HERE)
     with open(prm, "w") as f:
-        f.write(open(os.path.join(HERE, "signorini_hertz_2d.prm")).read())
-        f.write("subsection Finite element\n  set Degree = %s\nend\n" % element[1])
-        f.write("subsection Geometry\n  set Global refinements = %d\n" % glevel)
-        if strategy in DISC:
-            f.write("  set Local refinements = %d\n  set Refinement region = %s\nend\n"
-                    % (level, DISC[strategy]))
-            mesh = "G%d L%d" % (glevel, level)
-        else:
-            f.write("  set Local refinements = 0\nend\n")
-            f.write("subsection Adaptive refinement\n  set Cycles = %d\nend\n" % level)
-            mesh = "G%d, %d cycles" % (glevel, level)
-        f.write("subsection Output\n  set Directory = %s\nend\n" % outdir)
+        f.write("\n".join(edit_prm(lines, sets)) + "\n")
     wall, rc = timed([binary, prm], log)
     text = open(log).read()
     if rc != 0:

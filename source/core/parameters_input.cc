@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numeric>
 #include <regex>
 #include <sstream>
@@ -314,6 +315,50 @@ namespace Signorini
       return path.empty() ? "top level" : "subsection '" + path + "'";
     }
 
+    // A 'set' of an entry that an earlier line of the same subsection set
+    // already: ParameterHandler takes the second silently, which hides a
+    // pasted block or a forgotten edit. Names both lines (by @p origins
+    // where the text was assembled from included files).
+    void
+    check_duplicate_entries(const std::string              &text,
+                            const std::string              &source,
+                            const std::vector<std::string> &origins)
+    {
+      const auto where = [&](const unsigned int n) {
+        return n >= 1 && n <= origins.size() ?
+                 origins[n - 1] :
+                 source + ", line " + std::to_string(n);
+      };
+      std::istringstream                  in(text);
+      std::vector<std::string>            stack;
+      std::map<std::string, unsigned int> first;
+      std::string                         line;
+      for (unsigned int n = 1; std::getline(in, line); ++n)
+        {
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (line.rfind("subsection ", 0) == 0)
+            stack.push_back(Utilities::trim(line.substr(11)));
+          else if (line == "end" && !stack.empty())
+            stack.pop_back();
+          else if (line.rfind("set ", 0) == 0 &&
+                   line.find('=') != std::string::npos)
+            {
+              std::string path;
+              for (const auto &s : stack)
+                path += s + "/";
+              const std::string entry =
+                Utilities::trim(line.substr(4, line.find('=') - 4));
+              const auto [it, added] = first.emplace(path + entry, n);
+              if (!added)
+                throw InputError(
+                  "Error in " + where(n) + " (" + subsection_at_line(text, n) +
+                  "): the entry '" + entry +
+                  "' is set a second time (first in " + where(it->second) +
+                  "). Keep one of the two lines.");
+            }
+        }
+    }
+
     // Turn deal.II's parse exception into one message naming line and
     // subsection, with a hint for the cases users hit most.
     std::string
@@ -342,6 +387,11 @@ namespace Signorini
       message = std::regex_replace(message,
                                    std::regex("Line <\\d+> of file <[^>]*>: "),
                                    "");
+      // Never the content of the line: an included file may not be a
+      // parameter file at all (include /etc/passwd).
+      message = std::regex_replace(message,
+                                   std::regex("The line <[^\n]*?> could not"),
+                                   "This line could not");
       // Entries removed when their choice was decided (one default per
       // choice, doc/theory.md): what the run does instead.
       static const std::pair<const char *, const char *> removed[] = {
@@ -373,6 +423,19 @@ namespace Signorini
          "the VTU files are written by the postprocessor 'visualization': "
          "list it in 'Output/Postprocessors' (it is in the default list) or "
          "leave it out."},
+        {"Force balance tolerance",
+         "the balance of the contact forces is checked by 'Action-reaction "
+         "tolerance' in the same subsection (action = reaction of each "
+         "pair), and the support reactions by the force balance of every "
+         "body, which every run prints."},
+        {"Friction status",
+         "stick and slip are always decided per multiplier node on meshed "
+         "masters (the former 'Friction status = node'); the nodal rule and "
+         "rigid obstacles keep one law per node."},
+        {"Stagnation tolerance",
+         "the round-off floor of Newton's residual is computed from the size "
+         "of its terms; 'Newton/Relative tolerance' and 'Newton/Absolute "
+         "tolerance' set the convergence."},
         {"Geometric linearisation",
          "frictionless rigid obstacles are always linearised in Newton "
          "(projection, normal and curvature at every iterate); frictional "
@@ -381,7 +444,14 @@ namespace Signorini
       static const std::vector<std::pair<const char *, const char *>> moved = {
         {"Body force",
          "it is set per material now: move the line into subsection "
-         "'Materials/Material k' of each material it acts on."}};
+         "'Materials/Material k' of each material it acts on."},
+        {"Obstacle point",
+         "a rigid obstacle reads its data from its own subsection of "
+         "'Contact/Pair k': 'Point' in subsection 'Plane', 'Centre' in "
+         "'Sphere', 'Axis point' in 'Cylinder'. Move the line there."},
+        {"Obstacle normal",
+         "it is 'Outward normal' in subsection 'Contact/Pair k/Plane' now: "
+         "move the line there."}};
       for (const auto &[name, where_now] : moved)
         if (message.find("No entry with name <" + std::string(name) + ">") !=
             std::string::npos)
@@ -416,6 +486,7 @@ namespace Signorini
                const std::vector<std::string> &origins = {})
     {
       check_parameter_text(text, source);
+      check_duplicate_entries(text, source, origins);
       // Pre-pass: only the counts, ignoring everything else.
       Counts counts;
       {

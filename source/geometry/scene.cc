@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -404,12 +405,22 @@ namespace Signorini
                     {
                       std::ostringstream info;
                       e.print_info(info);
+                      // What GridIn quotes of the file is left out: a
+                      // 'Mesh file' may be a link to any file.
+                      const std::regex  quoted("<[^<>\n]*>");
+                      const std::string text =
+                        std::regex_replace(info.str(),
+                                           quoted,
+                                           "(a line of the file)");
                       const std::string more =
-                        grid_in_diagnostics(diagnostics.text());
+                        std::regex_replace(grid_in_diagnostics(
+                                             diagnostics.text()),
+                                           quoted,
+                                           "(a line of the file)");
                       throw InputError(body_name(b) +
                                        ", parameter 'Mesh file': GridIn could "
                                        "not read '" +
-                                       name + "': " + info.str() +
+                                       name + "': " + text +
                                        (more.empty() ? "" : " (" + more + ")"));
                     }
                 }
@@ -592,6 +603,7 @@ namespace Signorini
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           Triangulation<dim> body_tria;
+          check_subdivisions(bodies[b], b, parameters);
           build_body(bodies[b], b, parameters.input_directory, body_tria);
           check_cells(body_tria, b, bodies[b]);
           add_mesh_parts(body_tria, b, parts);

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# check.sh <signorini> <base.prm> <tolerance> <label A> <prm text A> <label B> <prm text B>
+# check.sh <signorini> <base.prm> <tolerance> <label A> <settings A> <label B> <settings B>
 # Two settings that change the path of the Newton / active-set search, not
 # its end (doc/robustness.md: release extrapolation, pairing at status
-# changes, line search, the initial status): runs <base.prm> with prm text
-# A and with prm text B appended (printf %b escapes), prints the Newton
-# iterations and step cuts of both, and requires of both runs
+# changes, line search, the initial status): runs <base.prm> with settings
+# A and with settings B ('Subsection/Entry=value' entries for
+# scripts/prm-set, separated by newlines: printf %b escapes, so '\n'),
+# prints the Newton iterations and step cuts of both, and requires of both
+# runs
 #   - every reference check passes and no load step is cut;
 # and between them, at every point of the last load step,
 #   - the same contact pressure and tangential traction, to <tolerance> of
@@ -13,13 +15,14 @@
 set -u
 exe="$(realpath "$1")"; base="$(realpath "$2")"; tol="$3"
 labels=("$4" "$6"); texts=("$5" "$7")
+prm_set="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../scripts" && pwd)/prm-set"
 dir="$(mktemp -d)"; trap 'rm -rf "$dir"' EXIT
 cd "$dir"
 status=0
 for k in 0 1; do
-  { cat "$base"
-    printf '%b\n' "${texts[$k]}"
-    printf 'subsection Output\n  set Directory = %s\n  set Postprocessors = reference checks\nend\n' "$dir/run$k"; } > "run$k.prm"
+  mapfile -t sets < <(printf '%b\n' "${texts[$k]}" | grep -v '^[[:space:]]*$')
+  /usr/bin/python3 "$prm_set" "$base" "${sets[@]}" "Output/Directory=$dir/run$k" \
+    "Output/Postprocessors=reference checks" > "run$k.prm" || exit 1
   if ! "$exe" "run$k.prm" > "run$k.log" 2>&1; then
     tail -5 "run$k.log"; echo "FAIL: ${labels[$k]}: did not run to the end"; exit 1
   fi

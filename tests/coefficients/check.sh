@@ -6,13 +6,13 @@
 # equal those of c_n = 1 to 1e-6 relative to p0, with the same statuses.
 set -u
 exe="$(realpath "$1")"; base="$(realpath "$2")"
+prm_set="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../scripts" && pwd)/prm-set"
 dir="$(mktemp -d)"; trap 'rm -rf "$dir"' EXIT
 cd "$dir"
 status=0
 for cn in 1 1e-3 1e-2 1e-1 10 1e2 1e3 1e4 1e5 1e6; do
-  { cat "$base"
-    printf 'subsection Contact\n  subsection Pair 1\n    set Normal coefficient = %s\n  end\nend\n' "$cn"
-    printf 'subsection Output\n  set Directory = %s\nend\n' "$dir/c$cn"; } > "c$cn.prm"
+  /usr/bin/python3 "$prm_set" "$base" "Contact/Pair 1/Normal coefficient=$cn" \
+    "Output/Directory=$dir/c$cn" > "c$cn.prm" || exit 1
   if ! "$exe" "c$cn.prm" > "c$cn.log" 2>&1; then
     tail -5 "c$cn.log"; echo "FAIL: c_n = $cn did not run to the end"; status=1; continue
   fi

@@ -14,7 +14,8 @@ export OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_CORETYPE=Haswell
 dir="$(mktemp -d)"; trap 'rm -rf "$dir"' EXIT
 cd "$dir"
-{ cat "$prm"; printf 'subsection Output\n  set Postprocessors = contact surface, reference checks\nend\n'; } > scene.prm
+/usr/bin/python3 "$here/../../scripts/prm-set" "$prm" \
+  "Output/Postprocessors=contact surface, reference checks" > scene.prm || exit 1
 status=0
 for n in 1 "$np"; do
   mkdir "np$n"

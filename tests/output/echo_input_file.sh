@@ -7,9 +7,11 @@
 # an input file of another name gives the echo parameters.prm.
 set -u
 exe="$1"; prm="$2"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 dir="$(mktemp -d)"; trap 'rm -rf "$dir"' EXIT
 cd "$dir"
-{ cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = 2\nend\nsubsection Output\n  set Directory = .\n  set Postprocessors = reference checks\nend\n'; } > parameters.prm
+/usr/bin/python3 "$here/../../scripts/prm-set" "$prm" "Load stepping/Number of steps=2" \
+  "Output/Directory=." "Output/Postprocessors=reference checks" > parameters.prm || exit 1
 cp parameters.prm original.prm
 mkdir other; ln -s ../parameters.prm other/link.prm; ln parameters.prm hard.prm
 status=0

@@ -15,7 +15,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 [ -w /dev/full ] || { echo "FAIL: /dev/full is not writable here"; exit 1; }
 top="$(mktemp -d)"; trap 'rm -rf "$top"' EXIT
-{ cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = 3\nend\n'; } > "$top/scene.prm"
+/usr/bin/python3 "$here/../../scripts/prm-set" "$prm" "Load stepping/Number of steps=3" \
+  > "$top/scene.prm" || exit 1
 status=0
 # case <link name> <ranks> <file(s) named in the message, quoted as there>
 case_() {

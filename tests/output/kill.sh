@@ -33,7 +33,8 @@ wait "$pid" 2>/dev/null
 # temporary names included).
 stale="$(find results -maxdepth 1 -type f -regextype posix-extended -regex \
   '.*/(((solution|contact_surface)_[0-9]+\.[0-9]+\.vtu|(solution|contact_surface)_[0-9]+\.pvtu|(solution|contact_surface)\.pvd|contact_[0-9]+\.csv|statistics\.csv|newton_history\.csv)(\.tmp)?|parameters\.prm\.tmp)' | wc -l)"
-{ cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = 2\nend\n'; } > two_steps.prm
+/usr/bin/python3 "$here/../../scripts/prm-set" "$prm" "Load stepping/Number of steps=2" \
+  > two_steps.prm || exit 1
 (run two_steps.prm) > rerun.txt 2>&1; rc=$?
 if [ $rc -ne 0 ]; then echo "FAIL: the 2-step run exited with code $rc"; tail -5 rerun.txt; exit 1; fi
 expect="Removed $stale result file(s) of an earlier run from 'results'"

@@ -10,8 +10,8 @@ exe="$1"; prm="$2"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 dir="$(mktemp -d)"; trap 'rm -rf "$dir"' EXIT
 cd "$dir"
-steps() { { cat "$prm"; printf 'subsection Load stepping\n  set Number of steps = %s\nend\n' "$1"; } > "run$1.prm"; }
-steps 4; steps 2
+steps() { /usr/bin/python3 "$here/../../scripts/prm-set" "$prm" "Load stepping/Number of steps=$1" > "run$1.prm"; }
+steps 4 && steps 2 || exit 1
 "$exe" run4.prm > out4.txt 2>&1 || { echo "FAIL: the 4-step run failed"; tail -3 out4.txt; exit 1; }
 # 4 x (contact CSV, VTU, PVTU, surface VTU, surface PVTU) + solution.pvd,
 # contact_surface.pvd, statistics.csv, newton_history.csv

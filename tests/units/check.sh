@@ -7,11 +7,12 @@
 # and the statuses equal.
 set -u
 exe="$(realpath "$1")"; si="$(realpath "$2")"; mm="$(realpath "$3")"
+prm_set="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../scripts" && pwd)/prm-set"
 dir="$(mktemp -d)"; trap 'rm -rf "$dir"' EXIT
 cd "$dir"
 for u in si mm; do
   prm="$si"; [ "$u" = mm ] && prm="$mm"
-  { cat "$prm"; printf 'subsection Output\n  set Directory = %s\nend\n' "$dir/$u"; } > "$u.prm"
+  /usr/bin/python3 "$prm_set" "$prm" "Output/Directory=$dir/$u" > "$u.prm" || exit 1
   "$exe" "$u.prm" > "$u.log" 2>&1 || { cat "$u.log"; echo "FAIL: $u run"; exit 1; }
   grep -E "Newton iterations|contact pair" "$u.log" | sed "s/^/$u: /"
 done

@@ -46,6 +46,14 @@ namespace Signorini
     std::string
     grid_in_diagnostics(const std::string &captured);
 
+    /** InputError if the generated block @p body (number @p b) would
+     * have more cells than 'Geometry/Maximum number of cells', before it
+     * is built. */
+    void
+    check_subdivisions(const BodyParameters &body,
+                       const unsigned int    b,
+                       const Parameters     &parameters);
+
     /**
      * Refuses 'Global refinements' that would refine @p n_coarse_cells
      * beyond 'Maximum number of cells'.
