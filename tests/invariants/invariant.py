@@ -1,0 +1,179 @@
+#!/usr/bin/python3
+"""The invariant layer: a scene and a variant of it that must agree.
+
+    invariant.py EXE MPIEXEC BASE.prm [options]
+
+Writes two parameter files derived from BASE.prm (--base-set and --set
+change entries of the base and of the variant: 'Sub/Sub/Entry=value', a '*'
+path part matching every numbered subsection, e.g. 'Materials/Material
+*/Model=J2 plasticity'), runs both (--base-np, --np ranks), then compares
+the physics columns of their statistics.csv at the times both have (the
+last time only with --last):
+
+  forces      reaction_*, contact_force_*             to --tol of the largest
+  motion      displacement_*, max_abs_u, obstacle_*   base force / motion
+  pressure    contact_pressure_*                      to --tol of its largest
+  area        contact_area_* / contact_length_*       to --tol of its largest
+  counts      contact_points_*                        equal (--counts=free: not)
+
+With --ranks also the solver counts (newton_iterations, step_cuts,
+cycle_detections, points_frozen) must be equal. --transform rotate=DEG
+turns the base's x, y vectors by DEG degrees (counterclockwise) before the
+comparison (a scene turned by DEG); --transform mirror=x flips the x
+components. --no-references drops the base's 'Reference solution' (its
+closed forms hold at the end of the path only, and the variant's path
+differs) before the --base-set entries are applied. Prints every compared column with its largest difference and
+exits 0 only if all are within bounds. The prm editing is the only thing
+this script knows of the program: the quantities compared are the
+program's results, the reference is the other run.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from prm_edit import absolute_paths, edit_prm, remove_section  # noqa: E402
+
+
+def run(exe, mpiexec, prm_lines, np, directory, name):
+    os.makedirs(directory, exist_ok=True)
+    out = os.path.join(directory, "results")
+    prm = os.path.join(directory, name + ".prm")
+    with open(prm, "w") as f:
+        f.write("\n".join(edit_prm(prm_lines, ["Output/Directory=" + out])) + "\n")
+    command = [exe, prm] if np == 1 else [mpiexec, "-n", str(np), "--allow-run-as-root", exe, prm]
+    log = os.path.join(directory, name + ".log")
+    with open(log, "w") as f:
+        code = subprocess.call(command, stdout=f, stderr=subprocess.STDOUT, cwd=directory)
+    if code != 0:
+        print("FAIL: the %s run (%d rank(s)) exited with code %d; its last lines:" % (name, np, code))
+        print("".join(open(log).readlines()[-8:]))
+        sys.exit(1)
+    with open(os.path.join(out, "statistics.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+KIND = [
+    ("counts", re.compile(r"contact_points_")),
+    ("solver", re.compile(r"^(newton_iterations|step_cuts|cycle_detections|points_frozen)$")),
+    ("forces", re.compile(r"^(reaction_|contact_force_)")),
+    ("motion", re.compile(r"^(displacement_|max_abs_u|obstacle_displacement_)")),
+    ("pressure", re.compile(r"^contact_pressure_")),
+    ("area", re.compile(r"^contact_(area|length)_")),
+]
+
+
+def kind(column):
+    for k, pattern in KIND:
+        if pattern.search(column):
+            return k
+    return None
+
+
+def transform(rows, how):
+    """The base's vectors as the variant must show them."""
+    if not how:
+        return rows
+    what, arg = how.split("=")
+    out = []
+    for row in rows:
+        row = dict(row)
+        for column in row:
+            if not column.endswith("_x") or kind(column) not in ("forces", "motion"):
+                continue
+            y = column[:-2] + "_y"
+            if y not in row:
+                continue
+            x0, y0 = float(row[column]), float(row[y])
+            if what == "rotate":
+                a = math.radians(float(arg))
+                row[column] = repr(math.cos(a) * x0 - math.sin(a) * y0)
+                row[y] = repr(math.sin(a) * x0 + math.cos(a) * y0)
+            elif what == "mirror" and arg == "x":
+                row[column] = repr(-x0)
+        out.append(row)
+    return out
+
+
+def compare(base, variant, tol, last, counts, ranks):
+    by_time = {round(float(r["time"]), 9): r for r in variant}
+    pairs = [(b, by_time.get(round(float(b["time"]), 9))) for b in base]
+    pairs = [(b, v) for b, v in pairs if v is not None]
+    if last:
+        pairs = pairs[-1:] if round(float(base[-1]["time"]), 9) in by_time else []
+    if not pairs:
+        print("FAIL: the runs share no time")
+        return False
+    scale = {}
+    for b, _ in pairs:
+        for column, value in b.items():
+            k = kind(column)
+            if k in ("forces", "motion"):
+                scale[k] = max(scale.get(k, 0), abs(float(value)))
+            elif k in ("pressure", "area"):
+                scale[column] = max(scale.get(column, 0), abs(float(value)))
+    ok = True
+    worst = {}
+    for b, v in pairs:
+        for column, value in b.items():
+            k = kind(column)
+            if k is None or (k == "solver" and not ranks) or (k == "counts" and not counts):
+                continue
+            if column not in v:
+                print("FAIL: column %s missing in the variant" % column)
+                return False
+            if k in ("counts", "solver"):
+                if int(value) != int(v[column]):
+                    print("FAIL: %s at t = %s: %s against %s" % (column, b["time"], value, v[column]))
+                    ok = False
+                continue
+            s = scale.get(k, scale.get(column, 0))
+            d = abs(float(value) - float(v[column]))
+            r = d / s if s > 0 else d
+            worst[column] = max(worst.get(column, 0), r)
+    for column, r in sorted(worst.items()):
+        print("  %-36s largest difference %.2e of its scale" % (column, r))
+        if r > tol:
+            ok = False
+    print("%d time(s) compared, worst %.2e (bar %.1e)" % (len(pairs), max(worst.values() or [0]), tol))
+    return ok
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("exe")
+    parser.add_argument("mpiexec")
+    parser.add_argument("base")
+    parser.add_argument("--base-set", action="append", default=[])
+    parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--base-np", type=int, default=1)
+    parser.add_argument("--np", type=int, default=1)
+    parser.add_argument("--tol", type=float, default=1e-8)
+    parser.add_argument("--last", action="store_true")
+    parser.add_argument("--counts", default="equal")
+    parser.add_argument("--ranks", action="store_true")
+    parser.add_argument("--transform", default="")
+    parser.add_argument("--keep", default="")
+    parser.add_argument("--no-references", action="store_true")
+    a = parser.parse_args()
+    base_dir = os.path.dirname(os.path.abspath(a.base))
+    base_lines = absolute_paths(open(a.base).read().splitlines(), base_dir)
+    if a.no_references:
+        base_lines = remove_section(base_lines, "Reference solution")
+    base_lines = edit_prm(base_lines, a.base_set)
+    variant_lines = edit_prm(base_lines, a.set)
+    top = a.keep or tempfile.mkdtemp(prefix="invariant_")
+    base = run(a.exe, a.mpiexec, base_lines, a.base_np, os.path.join(top, "base"), "base")
+    variant = run(a.exe, a.mpiexec, variant_lines, a.np, os.path.join(top, "variant"), "variant")
+    ok = compare(transform(base, a.transform), variant, a.tol, a.last, a.counts == "equal", a.ranks)
+    print("PASS: invariant holds" if ok else "FAIL: invariant broken")
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
