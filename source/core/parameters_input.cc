@@ -426,8 +426,8 @@ namespace Signorini
         {"Force balance tolerance",
          "the balance of the contact forces is checked by 'Action-reaction "
          "tolerance' in the same subsection (action = reaction of each "
-         "pair), and the support reactions by the force balance of every "
-         "body, which every run prints."},
+         "pair), and the support reactions by the force balance of the "
+         "bodies, which every run checks."},
         {"Friction status",
          "stick and slip are always decided per multiplier node on meshed "
          "masters (the former 'Friction status = node'); the nodal rule and "
