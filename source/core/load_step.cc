@@ -469,6 +469,10 @@ namespace Signorini
                  "stuck; " +
                  smaller + " helps only in the second case.";
         case NewtonFailure::linear_solve:
+          if (newton_failure.find("Krylov solve") != std::string::npos)
+            return "The Krylov solver reached its iteration cap: raise "
+                   "'Linear solver/Maximum iterations' (or set 'Linear "
+                   "solver/Type = direct'); smaller steps do not help.";
           return "A singular tangent means that part of the model can move "
                  "at no force in that iterate: a body without supports, or a "
                  "perfectly plastic zone that has become a mechanism (give "

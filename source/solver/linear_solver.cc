@@ -428,9 +428,11 @@ namespace Signorini
         {
           std::ostringstream s;
           s << "the Krylov solve of the tangent stopped at " << e.last_step
-            << " iterations with residual " << std::scientific
-            << std::setprecision(2) << e.last_residual
-            << " above 'Linear solver/Tolerance' times |b|";
+            << " iterations ('Linear solver/Maximum iterations' = "
+            << parameters.max_iterations << ") with residual "
+            << std::scientific << std::setprecision(2) << e.last_residual
+            << " above 'Linear solver/Relative tolerance' = "
+            << parameters.relative_tolerance << " times |b|";
           throw LinearSolveError(s.str());
         }
     }
