@@ -80,6 +80,16 @@ namespace Signorini
             failure = report.open_newton_history();
         }
       check_output(failure);
+      // Every point of 'Point values' lies in a body: found now, before a
+      // step is solved, not when the first step is written.
+      const auto &points = parameters.reference.point_values;
+      for (unsigned int k = 0; k < points.size(); ++k)
+        {
+          Point<dim> p;
+          for (unsigned int d = 0; d < dim && d < points[k].point.size(); ++d)
+            p[d] = points[k].point[d];
+          point_value(p, 0, k + 1);
+        }
     }
 
 
@@ -221,7 +231,8 @@ namespace Signorini
     template <int dim>
     double
     Results<dim>::point_value(const Point<dim>  &p,
-                              const unsigned int component) const
+                              const unsigned int component,
+                              const unsigned int entry) const
     {
       double value = 0;
       bool   found = false;
@@ -257,9 +268,17 @@ namespace Signorini
                                     std::numeric_limits<unsigned int>::max(),
                             system.mpi_communicator);
       if (owner == std::numeric_limits<unsigned int>::max())
-        throw InputError("subsection 'Reference solution', parameter 'Point "
-                         "values': the point lies in no cell of the mesh. Give "
-                         "a point of a body.");
+        {
+          std::ostringstream where;
+          where << "subsection 'Reference solution', parameter 'Point "
+                   "values': the point (";
+          for (unsigned int d = 0; d < dim; ++d)
+            where << (d ? ", " : "") << p[d];
+          where << ")"
+                << (entry > 0 ? " of entry " + std::to_string(entry) : "")
+                << " lies in no cell of the mesh. Give a point of a body.";
+          throw InputError(where.str());
+        }
       return Utilities::MPI::sum(rank == owner ? value : 0.,
                                  system.mpi_communicator);
     }

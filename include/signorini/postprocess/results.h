@@ -76,9 +76,13 @@ namespace Signorini
        * 1e-6 of the force level; nothing printed if they do. */
       void
       check_force_balance();
-      /** Displacement component at a point of a body. */
+      /** Displacement component at a point of a body; an InputError
+       * naming the point (and its entry @p entry of 'Point values', if
+       * > 0) if no cell holds it. */
       double
-      point_value(const Point<dim> &p, const unsigned int component) const;
+      point_value(const Point<dim>  &p,
+                  const unsigned int component,
+                  const unsigned int entry = 0) const;
       void
       run_postprocessors(const unsigned int step, const double time);
       /** The step's report on screen; returns its statistics.csv lines. */
