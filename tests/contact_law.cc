@@ -554,6 +554,53 @@ namespace
 } // namespace
 
 
+// A point whose nodes hold tangents (PointState::held = Q, theory.md F8):
+// the Jacobian is the derivative at stick and slip, and sticking, the rows
+// along Q are s Q Lambda and the traction has no rho_t v along Q.
+template <int dim>
+void
+check_held_law()
+{
+  Tensor<2, dim - 1> Q;
+  if constexpr (dim == 2)
+    Q[0][0] = 1;
+  else
+    {
+      const Tensor<1, 2> a({0.6, 0.8});
+      Q = outer_product(a, a);
+    }
+  for (const Which which : {Which::stick, Which::slip})
+    {
+      LawParameters p;
+      p.rho_n               = 50.;
+      p.rho_t               = 20.;
+      p.mu                  = 0.3;
+      p.free_friction_scale = 0.7;
+      PointState<dim> s     = make_state<dim>(which);
+      s.held                = Q;
+      const auto   r        = evaluate_contact_law(s, p);
+      const double err      = fd_error(s, p);
+      bool         ok       = err < fd_tolerance;
+      if (which == Which::stick)
+        {
+          // Rows along Q: s Q Lambda; traction along Q: -mu lambda T Q Lambda.
+          Tensor<1, dim - 1> QL = Q * s.Lambda, r_held = Q * r.r_f;
+          Tensor<1, dim - 1> f_t;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            f_t[k] = r.force * s.tangents[k];
+          ok = ok && r.status == PointStatus::stick &&
+               (r_held - p.free_friction_scale * QL).norm() < 1e-14 &&
+               (Q * f_t + p.mu * s.lambda * QL).norm() < 1e-13;
+        }
+      deallog << dim << "d " << to_string(which)
+              << " point with held tangents: FD error < 1e-6"
+              << (which == Which::stick ? ", rows s Q Lambda, no rho_t v" : "")
+              << ": " << yes_no(ok) << std::endl;
+      AssertThrow(ok, ExcMessage("held law check failed"));
+    }
+}
+
+
 // held_tangent(): a node held along tangential directions (a symmetry
 // plane) keeps the friction component the conditions leave free.
 void
@@ -621,6 +668,8 @@ main()
       check_physics<2>();
       check_physics<3>();
       check_held_tangent();
+      check_held_law<2>();
+      check_held_law<3>();
 
       deallog << "OK" << std::endl;
     }

@@ -53,7 +53,7 @@ namespace Signorini
       ContactStatistics stats;
       // Normal status per node (decided before the point loop: a node's
       // status needs the points of all its faces).
-      if (node_statuses.any())
+      if (node_statuses.decides())
         {
           stats.n_changed +=
             node_statuses.decide(state, start, new_iterate, history, stats);
@@ -218,25 +218,27 @@ namespace Signorini
       s.frozen_slip_direction = point.newton.frozen_slip_direction;
       s.freeze_stick          = point.newton.freeze_stick;
       s.release               = point.newton.release;
-      // A point whose multiplier nodes are all excluded from contact
-      // (friction) by a Dirichlet condition (theory.md F8) carries no
-      // contact (friction) force: its multipliers are held at zero, and the
-      // plain law would act there as a penalty of stiffness rho_n (rho_t) on
-      // the master. The nodal rule's points are nodes.
+      // A point whose multiplier nodes are all excluded from contact by a
+      // Dirichlet condition (theory.md F8) carries no contact force: their
+      // multipliers are held at zero, and the plain law would act there as
+      // a penalty of stiffness rho_n on the master. One whose nodes all
+      // hold the same tangents (Q) takes them into its law: sticking, no
+      // rho_t v along them (the nodal rule's points are nodes).
       e.point_law = e.law;
-      if (!e.by_node)
-        {
-          bool contact_out = true, friction_out = true;
-          for (unsigned int l = 0; l < e.n_l; ++l)
-            if (psi[l] > 1e-12)
-              {
-                contact_out &= face.excluded_contact[l];
-                friction_out &= face.excluded_friction[l];
-              }
-          s.release |= contact_out;
-          if (friction_out)
-            e.point_law.mu = 0;
-        }
+      {
+        bool contact_out = !e.by_node, first = true, same_held = true;
+        for (unsigned int l = 0; l < e.n_l; ++l)
+          if (psi[l] > 1e-12)
+            {
+              contact_out &= face.excluded_contact[l];
+              same_held &= first || face.held[l] == s.held;
+              s.held = face.held[l];
+              first  = false;
+            }
+        s.release |= contact_out;
+        if (!same_held)
+          s.held = Tensor<2, dim - 1>();
+      }
       e.r = e.by_node ? node_statuses.response(point, s) :
                         evaluate_contact_law(s, e.point_law);
 
@@ -246,18 +248,24 @@ namespace Signorini
       for (unsigned int k = 0; k < dim - 1; ++k)
         e.slip_t[k] = point.paired ? s.slip * s.tangents[k] : 0.;
       // Status, lambda_l and Lambda_l of the face's nodes, looked up once
-      // per point (force, rows and derivatives).
-      e.node_data.resize(e.by_node && e.fric ? e.n_l : 0);
+      // per point (force, rows and derivatives). Pairs with statuses per
+      // point: the held nodes only, whose rows are the node's (status
+      // nullptr at the others).
+      const bool held_rows = e.fric && node_statuses.held_by_node(p) &&
+                             NodeStatuses<dim>::has_held_node(face);
+      e.node_data.resize((e.by_node && e.fric) || held_rows ? e.n_l : 0);
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
           auto &d      = e.node_data[l];
-          d.status     = &node_statuses.friction(face.lambda_dofs[l]);
+          d.status     = e.by_node || face.held[l].norm() > 0 ?
+                           &node_statuses.friction(face.lambda_dofs[l]) :
+                           nullptr;
           d.lambda     = state[face.lambda_dofs[l]];
           d.row_lambda = weight_state[face.lambda_dofs[l]];
           for (unsigned int k = 0; k < dim - 1; ++k)
             d.Lambda[k] = state[face.friction_dofs[l * (dim - 1) + k]];
         }
-      if (point.paired)
+      if (point.paired && e.by_node)
         for (unsigned int l = 0; l < e.node_data.size(); ++l)
           if (e.node_data[l].status->active)
             for (unsigned int k = 0; k < dim - 1; ++k)

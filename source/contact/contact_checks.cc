@@ -242,13 +242,6 @@ namespace Signorini
                 continue;
               n /= n.norm();
               const Tensor<1, dim> F_t = F - (F * n) * n;
-              // A held tangent: the law acts along the free one only.
-              const auto    &a = face.friction_held[l];
-              const auto     T = tangent_basis(n);
-              Tensor<1, dim> h;
-              for (unsigned int k = 0; k < dim - 1; ++k)
-                h += a[k] * T[k];
-              W -= (W * h) * h;
               if (!scales.measurable(face.pair, F_t, W))
                 continue;
               add_slip_sample(result[face.pair],

@@ -183,28 +183,44 @@ namespace Signorini
       };
 
 
-      // Stick: P_B(h) = h.
+      // Stick: P_B(h) = h. Along held tangents (Q, theory.md F8) the rows
+      // are s Q Lambda and the traction takes Lambda alone.
       template <int dim>
       void
       add_stick_response(const FrictionTerms<dim> &f,
                          const Tensor<1, dim>     &h,
+                         const double              s,
                          PointResponse<dim>       &response)
       {
         const auto &T   = f.state.tangents;
+        const auto &Q   = f.state.held;
         response.status = PointStatus::stick;
-        // L_f^e = -w mu lambda_f N^e h.
-        response.force += -f.mu_lf * h;
-        response.dforce_dd += -f.mu_lf * f.rho_t * f.P;
+        // The free part of v, T (I - Q) T^T v, and its derivative
+        // T (I - Q) T^T P = P_f P.
+        Tensor<2, dim> P_f = f.P;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          for (unsigned int l = 0; l < dim - 1; ++l)
+            P_f -= Q[k][l] * outer_product(T[k], T[l]);
+        const Tensor<1, dim> h_f = h - f.rho_t * (f.v - P_f * f.v);
+        // L_f^e = -w mu lambda_f N^e h_f.
+        response.force += -f.mu_lf * h_f;
+        response.dforce_dd += -f.mu_lf * f.rho_t * P_f * f.P;
         for (unsigned int k = 0; k < dim - 1; ++k)
           response.dforce_dLambda[k] = -f.mu_lf * T[k];
         // K_ec threshold coupling: -mu P_B(h).
-        response.dforce_dlambda += -f.mu * h;
-        // L_f^f = -w psi mu lambda_f T^T v (weight held); K_ff = 0.
+        response.dforce_dlambda += -f.mu * h_f;
+        // L_f^f = -w psi mu lambda_f T^T v (weight held), K_ff = 0, along
+        // the free tangents; s Q Lambda along the held ones.
         for (unsigned int k = 0; k < dim - 1; ++k)
           {
-            response.r_f[k] = -f.mu_lw * (T[k] * f.v);
             // T^T P = T^T since T is tangent.
-            response.drf_dd[k] = -f.mu_lw * T[k];
+            response.r_f[k]    = -f.mu_lw * (T[k] * (P_f * f.v));
+            response.drf_dd[k] = -f.mu_lw * (T[k] * P_f);
+            for (unsigned int l = 0; l < dim - 1; ++l)
+              {
+                response.r_f[k] += s * Q[k][l] * f.state.Lambda[l];
+                response.drf_dLambda[k][l] = s * Q[k][l];
+              }
           }
       }
 
@@ -336,7 +352,7 @@ namespace Signorini
       // (different in SI and in mm-N-MPa). Such a tie is stick: the point
       // has not slipped in this step yet.
       if ((norm_h <= 1. + stick_tie || state.freeze_stick) && !frozen_slip)
-        add_stick_response(f, h, response);
+        add_stick_response(f, h, parameters.free_friction_scale, response);
       else if (frozen_slip)
         add_slip_response(f, q_frozen, Tensor<2, dim>(), response);
       else

@@ -145,16 +145,16 @@ namespace Signorini
           pcout << "  pair " << p + 1 << ": "
                 << pairing.obstacle(p)->approximate_derivatives()
                 << ": the contact Jacobian is not exact" << std::endl;
-      if (counts.n_excluded_contact + counts.n_excluded_friction > 0)
+      if (counts.n_excluded_contact > 0)
         pcout << "  over-constraint: " << counts.n_excluded_contact
               << " slave node(s) with a Dirichlet condition along the normal "
-                 "excluded from contact, "
-              << counts.n_excluded_friction
-              << " with a tangential one excluded from friction" << std::endl;
-      if (counts.n_held_tangent > 0)
-        pcout << "  " << counts.n_held_tangent
-              << " slave node(s) with one tangent held by a Dirichlet "
-                 "condition: friction along the other"
+                 "excluded from contact"
+              << std::endl;
+      if (counts.n_excluded_friction + counts.n_held_tangent > 0)
+        pcout << "  " << counts.n_excluded_friction + counts.n_held_tangent
+              << " slave node(s) with a tangent held by a Dirichlet "
+                 "condition: friction decided per node, the support "
+                 "carries it while they stick"
               << std::endl;
       if (counts.n_hanging > 0)
         pcout << "  " << counts.n_hanging

@@ -76,22 +76,34 @@ namespace Signorini
           for (unsigned int k = 0; k < (e.fric ? dim - 1 : 0); ++k)
             F[o_f + l * (dim - 1) + k] = -sf * w * psi[l] * r.r_f[k];
         }
-      // Friction rows of a node-status pair, per node: free (or zero
-      // threshold) s Lambda_l; stick -mu lambda_l W_l (its weighted slip
-      // closed); slip (mu lambda_l / rho_t) D_l (Lambda_l - q_l),
-      // q_l = H_l / |H_l|; each point adds its share w psi_l. The weight
-      // mu lambda_l is held at the iterate (NodeData::row_lambda).
+      // Friction rows per node (node-status pairs; the held nodes of the
+      // others, in place of the point's rows): free (or zero threshold)
+      // s Lambda_l; stick -mu lambda_l W_l (its weighted slip closed),
+      // along a held tangent s Q Lambda_l instead; slip
+      // (mu lambda_l / rho_t) D_l (Lambda_l - q_l), q_l = H_l / |H_l|;
+      // each point adds its share w psi_l. The weight mu lambda_l is held
+      // at the iterate (NodeData::row_lambda).
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
+          if (!e.node_data[l].status)
+            continue;
           const auto  &nf = *e.node_data[l].status;
           const double lw = e.node_data[l].row_lambda;
           const auto  &L  = e.node_data[l].Lambda;
+          const auto  &Q  = face.held[l];
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
-              const double r_f = !nf.active ? law.free_friction_scale * L[k] :
-                                 nf.stick   ? -law.mu * lw * e.slip_t[k] :
-                                              law.mu * lw / law.rho_t *
-                                              (L[k] - nf.H[k] / nf.H.norm());
+              double r_f = 0;
+              if (!nf.active)
+                r_f = law.free_friction_scale * L[k];
+              else if (nf.stick)
+                for (unsigned int j = 0; j < dim - 1; ++j)
+                  r_f += ((k == j) - Q[k][j]) * -law.mu * lw * e.slip_t[j] +
+                         law.free_friction_scale * Q[k][j] * L[j];
+              else
+                r_f = law.mu * lw / law.rho_t * (L[k] - nf.H[k] / nf.H.norm());
+              if (!e.by_node)
+                F[o_f + l * (dim - 1) + k] = 0; // the node's row instead
               F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
             }
         }
@@ -151,6 +163,13 @@ namespace Signorini
                     sf * w * psi[l] * psi[m] * r.drf_dLambda[k][kk];
               }
           }
+      // Pairs with statuses per point: a held node's rows are the node's.
+      if (!e.by_node)
+        for (unsigned int l = 0; l < e.node_data.size(); ++l)
+          if (e.node_data[l].status)
+            for (unsigned int k = 0; k < n_t; ++k)
+              for (unsigned int j = 0; j < e.n; ++j)
+                K(o_f + l * (dim - 1) + k, j) = 0;
       add_node_friction_jacobian(point, e, K);
     }
 
@@ -171,9 +190,13 @@ namespace Signorini
       const double       w     = point.weight;
       const double       sf =
         coefficients.tangential(p); // row scaling of Lambda rows
+      const auto &face = surfaces.slave_faces()[point.face];
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
+          if (!e.node_data[l].status)
+            continue;
           const auto        &nf  = *e.node_data[l].status;
+          const auto        &Q   = face.held[l];
           const double       lam = e.node_data[l].lambda;
           const double       lw  = e.node_data[l].row_lambda;
           const auto        &L   = e.node_data[l].Lambda;
@@ -185,9 +208,10 @@ namespace Signorini
                 K(of + k, of + k) += wl * law.free_friction_scale;
               continue;
             }
-          if (point.paired)
+          if (point.paired && e.by_node)
             {
-              // Displacement rows: d/dlambda_l, d/dLambda_l.
+              // Displacement rows: d/dlambda_l, d/dLambda_l (the point
+              // law's at the other pairs).
               Tensor<1, dim> TL;
               for (unsigned int k = 0; k < dim - 1; ++k)
                 TL += L[k] * s.tangents[k];
@@ -205,18 +229,21 @@ namespace Signorini
           // have no lambda_l column.
           if (nf.stick)
             {
-              if (point.paired)
-                for (unsigned int k = 0; k < dim - 1; ++k)
-                  for (unsigned int a = 0; a < n_u; ++a)
-                    K(of + k, a) +=
-                      wl * (-law.mu * lw) * s.tangents[k][comp[a]] * Nd[a];
+              // Along a held tangent: s Q Lambda_l.
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                for (unsigned int j = 0; j < dim - 1; ++j)
+                  {
+                    K(of + k, of + j) += wl * law.free_friction_scale * Q[k][j];
+                    if (point.paired)
+                      for (unsigned int a = 0; a < n_u; ++a)
+                        K(of + k, a) += wl * ((k == j) - Q[k][j]) *
+                                        (-law.mu * lw) *
+                                        s.tangents[j][comp[a]] * Nd[a];
+                  }
               continue;
             }
           // Slip: K_B = (I - q q) / |H|, dH/dLambda_l = I,
           // dH/du = rho_t / D_l dW/du. Frozen in slip: q fixed, K_B = 0.
-          // (A node with a held tangent a has H, and q, along the free
-          // tangent f; its constraint line a . Lambda = 0 leaves the row
-          // along f, and f^T K_B = 0: the projection of H adds nothing.)
           const double       nH = nf.H.norm();
           Tensor<2, dim - 1> KB;
           if (!nf.frozen)

@@ -41,9 +41,23 @@ namespace Signorini
             parameters.rule != IntegrationRule::nodal && pair.master_is_body());
           friction_node_pair.push_back(node_status_pair.back() &&
                                        pair.friction > 0);
+          // The other frictional pairs: the friction of held nodes.
+          held_node_pair.push_back(!node_status_pair.back() &&
+                                   pair.friction > 0);
           any_friction_node = any_friction_node || friction_node_pair.back();
           any_node_status   = any_node_status || node_status_pair.back();
+          any_held_node     = any_held_node || held_node_pair.back();
         }
+    }
+
+
+    template <int dim>
+    bool
+    NodeStatuses<dim>::has_held_node(const SlaveFace<dim> &face)
+    {
+      return std::any_of(face.held.begin(), face.held.end(), [](const auto &Q) {
+        return Q.norm() > 0;
+      });
     }
 
 
@@ -108,16 +122,18 @@ namespace Signorini
       // Frictional pairs: the weighted slip W_l = sum_k w_k psi_l T^T v_k,
       // component k in the vector of index k (by the node's lambda DoF).
       std::vector<TrilinosWrappers::MPI::Vector> W;
-      if (any_friction_node)
+      if (any_friction_node || any_held_node)
         for (unsigned int k = 0; k < dim - 1; ++k)
           W.push_back(surfaces.writable_multipliers());
       for (const auto &point : pairing.points())
         {
           const auto &face = surfaces.slave_faces()[point.face];
-          if (!node_status_pair[face.pair])
+          if (!node_status_pair[face.pair] &&
+              !(held_node_pair[face.pair] && has_held_node(face)))
             continue;
           const double g    = point.paired ? pairing.gap(point, state) : 0.;
-          const bool   slip = point.paired && friction_node_pair[face.pair];
+          const bool   slip = point.paired && (friction_node_pair[face.pair] ||
+                                             held_node_pair[face.pair]);
           const auto   v =
             slip ? pairing.slip(point, state, start) : Tensor<1, dim - 1>();
           for (unsigned int l = 0; l < face.node_local.size(); ++l)
@@ -182,7 +198,7 @@ namespace Signorini
                 ++changed;
               node_active[dof] = active;
             }
-      if (any_friction_node)
+      if (any_friction_node || any_held_node)
         changed += decide_friction(state, sums, new_iterate, history, stats);
       return changed;
     }
@@ -201,22 +217,33 @@ namespace Signorini
       // active if in contact with a threshold above zero (doc/theory.md
       // 3.3); H_l = Lambda_l + rho_t W_l / D_l; stick iff |H_l| <= 1 (the
       // round-off tie as in the point law). Each node once (it is on
-      // several faces), then its anti-cycling.
+      // several faces), then its anti-cycling. The held nodes of pairs
+      // with statuses per point: in contact by their weighted gap, as a
+      // node-status node would be (theory.md F8).
       unsigned int                      changed = 0;
       std::set<types::global_dof_index> seen;
       for (unsigned int f = 0; f < surfaces.slave_faces().size(); ++f)
         {
           const auto &face = surfaces.slave_faces()[f];
-          if (!friction_node_pair[face.pair])
+          const bool  held = held_node_pair[face.pair];
+          if (!friction_node_pair[face.pair] && !held)
             continue;
           const auto law = coefficients.law(face.pair);
           for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
             {
               const auto dof = face.lambda_dofs[l];
-              if (!seen.insert(dof).second)
+              if ((held && face.held[l].norm() == 0) ||
+                  !seen.insert(dof).second)
                 continue;
+              const bool in_contact =
+                held ? sums.P[dof] > 0 &&
+                         node_in_contact(state[dof],
+                                         sums.G[dof],
+                                         sums.D[dof],
+                                         coefficients.normal(face.pair)) :
+                       node_active.at(dof);
               NodeFriction<dim> nf;
-              nf.active = node_active.at(dof) && !face.excluded_friction[l] &&
+              nf.active = in_contact && !face.excluded_friction[l] &&
                           std::abs(state[dof]) > law.zero_threshold &&
                           sums.D[dof] > 0;
               if (nf.active)
@@ -224,9 +251,6 @@ namespace Signorini
                   for (unsigned int k = 0; k < dim - 1; ++k)
                     nf.H[k] = state[face.friction_dofs[l * (dim - 1) + k]] +
                               law.rho_t * sums.W[k][dof] / sums.D[dof];
-                  // One tangent held: the law along the other only.
-                  const auto &a = face.friction_held[l];
-                  nf.H -= (nf.H * a) * a;
                   nf.stick = nf.H.norm() <= 1. + stick_tie;
                 }
               const bool  owned = surfaces.owned_multipliers().is_element(dof);

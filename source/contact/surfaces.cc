@@ -531,7 +531,7 @@ namespace Signorini
           face.friction_dofs.clear();
           face.excluded_contact.assign(n_l, false);
           face.excluded_friction.assign(n_l, false);
-          face.friction_held.clear();
+          face.held.clear();
           for (unsigned int l = 0; l < n_l; ++l)
             {
               const auto &info = node_info.at(face.node_dofs[l * dim]);
@@ -540,14 +540,24 @@ namespace Signorini
                 for (unsigned int k = 0; k < dim - 1; ++k)
                   face.friction_dofs.push_back(info.friction + k);
               hanging |= !info.hanging.empty() || !info.closure.empty();
+              const bool held =
+                info.exclude_friction || !info.friction_held.empty();
               face.excluded_contact[l]  = info.exclude_contact;
               face.excluded_friction[l] = info.exclude_contact ||
-                                          info.exclude_friction ||
-                                          !info.closure.empty();
-              Tensor<1, dim - 1> a;
-              for (unsigned int k = 0; k < info.friction_held.size(); ++k)
-                a[k] = info.friction_held[k];
-              face.friction_held.push_back(a);
+                                          !info.closure.empty() ||
+                                          (held && !info.hanging.empty());
+              Tensor<2, dim - 1> Q;
+              if (held && !face.excluded_friction[l])
+                {
+                  Tensor<1, dim - 1> a;
+                  for (unsigned int k = 0; k < info.friction_held.size(); ++k)
+                    a[k] = info.friction_held[k];
+                  Q = outer_product(a, a);
+                  if (info.exclude_friction) // both held
+                    for (unsigned int k = 0; k < dim - 1; ++k)
+                      Q[k][k] = 1;
+                }
+              face.held.push_back(Q);
             }
           face.dual.clear();
           if (dual_pair[face.pair] && !hanging)
@@ -653,35 +663,23 @@ namespace Signorini
                                       node_info.at(parent).lambda,
                                       c);
             }
-          if (has_friction && (info.exclude_contact || info.exclude_friction ||
-                               !info.hanging.empty() || closed))
+          // A node with a held tangent keeps Lambda (its rows decide per
+          // node, theory.md F8), unless it is hanging: then Lambda = 0.
+          const bool held =
+            info.exclude_friction || !info.friction_held.empty();
+          if (has_friction &&
+              (info.exclude_contact || !info.hanging.empty() || closed))
             {
               for (unsigned int k = 0; k < dim - 1; ++k)
                 if (can(info.friction + k))
                   {
                     constraints.add_line(info.friction + k);
-                    if (!info.exclude_contact && !info.exclude_friction &&
-                        !closed)
+                    if (!info.exclude_contact && !held && !closed)
                       for (const auto &[parent, w] : info.hanging)
                         constraints.add_entry(info.friction + k,
                                               node_info.at(parent).friction + k,
                                               w);
                   }
-            }
-          else if (has_friction && !info.friction_held.empty())
-            {
-              // One tangent held (3D): a . Lambda = 0, solved for the
-              // component of a's larger entry.
-              const auto        &a = info.friction_held;
-              const unsigned int k = std::abs(a[0]) >= std::abs(a[1]) ? 0 : 1;
-              if (can(info.friction + k))
-                {
-                  constraints.add_line(info.friction + k);
-                  if (a[1 - k] != 0)
-                    constraints.add_entry(info.friction + k,
-                                          info.friction + 1 - k,
-                                          -a[1 - k] / a[k]);
-                }
             }
         }
       for (const auto &[d, entries] : master_lines)

@@ -139,6 +139,16 @@ namespace Signorini
       Tensor<1, dim - 1> Lambda;
 
       /**
+       * Q, the projector onto the tangents a Dirichlet condition holds at
+       * the point's nodes, in tangent coordinates (theory.md F8); zero
+       * where nothing is held. Sticking, the rows along them are
+       * free_friction_scale Q Lambda (Lambda = 0 there: the support
+       * carries the force) and the traction leaves out their rho_t v. The
+       * stick/slip test and the slip branch are the plain law's.
+       */
+      Tensor<2, dim - 1> held;
+
+      /**
        * Anti-cycling (theory.md F8, "status freeze"): keep the contact
        * branch whatever the sign of lambda_aug. Set by the assembly for a
        * point whose status cycled; false for the plain law.

@@ -20,7 +20,10 @@
  * slave node from its weighted gap, and on frictional pairs one friction
  * status per node from its weighted slip, so that every multiplier has one
  * law however many points its faces carry. The other pairs (nodal rule,
- * rigid obstacles) decide their statuses per point, in the law.
+ * rigid obstacles) decide their statuses per point, in the law, except
+ * the friction status of a slave node with a tangent held by a Dirichlet
+ * condition, which every frictional pair decides here, per node
+ * (theory.md F8): its rows are the node's.
  */
 namespace Signorini
 {
@@ -66,6 +69,21 @@ namespace Signorini
       any() const
       {
         return any_node_status;
+      }
+
+      /** True if pair @p p decides its statuses per point but the
+       * friction of its held nodes per node. */
+      bool
+      held_by_node(const unsigned int p) const
+      {
+        return held_node_pair[p];
+      }
+
+      /** True if decide() has anything to decide (the same on all ranks). */
+      bool
+      decides() const
+      {
+        return any_node_status || any_held_node;
       }
 
       /** True if some pair decides its friction statuses per node. */
@@ -140,6 +158,10 @@ namespace Signorini
       PointResponse<dim>
       response(const ContactPoint<dim> &point, const PointState<dim> &s) const;
 
+      /** True if a node of @p face has a held tangent. */
+      static bool
+      has_held_node(const SlaveFace<dim> &face);
+
     private:
       /** The gathered weighted sums of every node: gap G, weight D, paired
        * share P and (frictional pairs) slip W per tangent direction. */
@@ -162,13 +184,16 @@ namespace Signorini
       const Coefficients  &coefficients;
       std::vector<bool>    node_status_pair;   // per pair
       std::vector<bool>    friction_node_pair; // per pair
+      std::vector<bool>    held_node_pair;     // per pair
       bool                 any_node_status   = false;
       bool                 any_friction_node = false;
+      bool                 any_held_node     = false;
       // Normal status of the multiplier nodes of node-status pairs (key:
       // lambda DoF; the nodes of this rank's slave faces).
       NodeStatusMap node_active;
       // Friction status of the multiplier nodes of frictional node-status
-      // pairs (key: lambda DoF): active (in contact, nonzero threshold),
+      // pairs and of the held nodes of the other frictional pairs (key:
+      // lambda DoF): active (in contact, nonzero threshold),
       // stick, and H_l = Lambda_l + rho_t W_l / D_l with the weighted slip
       // W_l (theory.md).
       NodeFrictionMap node_friction;

@@ -48,14 +48,17 @@ namespace Signorini
       // delta_lm D_l; empty: the multipliers use psi.
       std::vector<double> dual;
       // Per node: excluded from contact (a Dirichlet condition along the
-      // normal) or from friction (one along a tangent, or from contact).
+      // normal), and whose Lambda a constraint line holds (excluded from
+      // contact, on the axis, or hanging with a tangent held).
       std::vector<bool> excluded_contact, excluded_friction;
-      // Per node (3D): a, the unit tangent held by a Dirichlet condition
-      // in the tangent frame (tau_1, tau_2) of the node; the node's Lambda
-      // has no component along it (a . Lambda = 0) and its friction acts
-      // along the other tangent only. Zero: no tangent held (or both, and
-      // the node is excluded from friction).
-      std::vector<Tensor<1, dim - 1>> friction_held;
+      // Per node: Q, the projector onto the tangents a Dirichlet condition
+      // holds, in the node's tangent frame (tau_1, tau_2): 1 in 2D, the
+      // identity in 3D with both held, a (x) a with one held (a unit).
+      // Zero: none held. A held node keeps Lambda and its friction law;
+      // sticking, its rows along the held tangents become Q Lambda = 0
+      // (its slip there is the condition's, and the support carries the
+      // force), theory.md F8. Written by Surfaces::finish_slave_faces.
+      std::vector<Tensor<2, dim - 1>> held;
     };
 
 
@@ -97,8 +100,9 @@ namespace Signorini
       unsigned int            pair             = 0;
       bool                    exclude_contact  = false;
       bool                    exclude_friction = false;
-      // 3D, one tangent held: a in the node's frame (SlaveFace::
-      // friction_held); empty otherwise.
+      // 3D, one tangent held: a in the node's frame; empty otherwise
+      // (SlaveFace::held is built from it and exclude_friction, which
+      // means both held).
       std::vector<double>                                     friction_held;
       std::vector<std::pair<types::global_dof_index, double>> hanging;
       // A node on the axis of an axisymmetric model on a quadratic face,
