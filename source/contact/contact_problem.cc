@@ -306,10 +306,17 @@ namespace Signorini
       // psi-weighted average over the node's points. 'penetrating': the
       // points that touch (g >= 0 up to the round-off of mesh coordinates,
       // 1e-8 of the face size) start closed, as where they penetrate; the
-      // others keep lambda = 0 (lambda_aug = -rho_n g: open).
+      // others keep lambda = 0 (lambda_aug = -rho_n g: open). Pairs with
+      // statuses per node decide it per node, on the weighted gap G_l / D_l
+      // their statuses use: a node that touches starts closed even where
+      // no integration point of its faces does (a curved face touching a
+      // flat one at the node).
       const double touch_tolerance = 1e-8;
       auto         num             = surfaces.writable_multipliers();
       auto         den             = surfaces.writable_multipliers();
+      auto         G               = surfaces.writable_multipliers();
+      auto         D               = surfaces.writable_multipliers();
+      const bool   per_node        = status == InitialStatus::penetrating;
       for (const auto &point : pairing.points())
         {
           const auto        &face = surfaces.slave_faces()[point.face];
@@ -325,6 +332,16 @@ namespace Signorini
           const double delta = 0.5 * coefficients.law(p).zero_threshold;
           if (status != InitialStatus::open && !point.paired)
             continue;
+          if (per_node && node_statuses.by_node(p))
+            {
+              for (unsigned int l = 0; l < face.node_local.size(); ++l)
+                {
+                  const double w = point.weight * point.psi_lambda[l];
+                  add_entry(G, face.lambda_dofs[l], w * g);
+                  add_entry(D, face.lambda_dofs[l], w);
+                }
+              continue;
+            }
           double target;
           if (status == InitialStatus::closed)
             target = std::min(0.,
@@ -334,7 +351,7 @@ namespace Signorini
           else if (status == InitialStatus::penetrating)
             target =
               g >= -touch_tolerance * surfaces.pair_scales().face_size[p] ?
-                -delta :
+                coefficients.normal(p) * std::min(g, 0.) - delta :
                 0.;
           else
             target = std::max(0., coefficients.normal(p) * g) + delta;
@@ -347,9 +364,26 @@ namespace Signorini
         }
       num.compress(VectorOperation::add);
       den.compress(VectorOperation::add);
+      G.compress(VectorOperation::add);
+      D.compress(VectorOperation::add);
       for (const auto i : surfaces.owned_multipliers())
         if (i < surfaces.n_u() + surfaces.n_lambda() && den[i] != 0)
           state_owned[i] = num[i] / den[i];
+      if (per_node)
+        for (const auto &face : surfaces.slave_faces())
+          if (node_statuses.by_node(face.pair))
+            for (const auto i : face.lambda_dofs)
+              if (surfaces.owned_multipliers().is_element(i) && D[i] > 0)
+                {
+                  const unsigned int p = face.pair;
+                  const double       g = G[i] / D[i];
+                  const double delta = 0.5 * coefficients.law(p).zero_threshold;
+                  state_owned[i] =
+                    g >=
+                        -touch_tolerance * surfaces.pair_scales().face_size[p] ?
+                      coefficients.normal(p) * std::min(g, 0.) - delta :
+                      0.;
+                }
       state_owned.compress(VectorOperation::insert);
     }
 

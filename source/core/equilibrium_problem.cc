@@ -53,7 +53,11 @@ namespace Signorini
       , pcout(pcout)
   {
     for (const auto &[id, material] : materials)
-      materials_linear &= material->is_linear();
+      {
+        materials_linear &= material->is_linear();
+        finite_strain |=
+          material->kinematics() == Material::Kinematics::finite_strain;
+      }
     linear_solver.set_bulk_linear(materials_linear);
   }
 
@@ -71,6 +75,27 @@ namespace Signorini
                       system.owned_system,
                       parameters.axisymmetric,
                       system.mpi_communicator);
+    position_scale.clear();
+    if (finite_strain)
+      {
+        TrilinosWrappers::MPI::Vector        owned(system.owned_system,
+                                            system.mpi_communicator);
+        std::vector<types::global_dof_index> dofs(
+          system.dof_handler.get_fe().n_dofs_per_cell());
+        for (const auto &cell : system.dof_handler.active_cell_iterators())
+          if (!cell->is_artificial())
+            {
+              cell->get_dof_indices(dofs);
+              for (const auto i : dofs)
+                if (system.owned_system.is_element(i))
+                  owned[i] = std::max<double>(owned[i], cell->diameter());
+            }
+        owned.compress(VectorOperation::insert);
+        position_scale.reinit(system.owned_system,
+                              system.relevant_system,
+                              system.mpi_communicator);
+        position_scale = owned;
+      }
   }
 
 
@@ -265,7 +290,8 @@ namespace Signorini
                                     system.state,
                                     first_update ? *first_update :
                                                    system.constraints_update,
-                                    system.mpi_communicator);
+                                    system.mpi_communicator,
+                                    position_scale);
     Solver::LinearisedStep step;
     step.held_motions = hold_free_motions(iteration);
     TimerOutput::Scope t(timer, "linear solve");

@@ -293,8 +293,9 @@ namespace Signorini
         small(block[2]);
       const bool residual_small = below_tolerance || at_floor;
       if (below_tolerance && !small(block[0]) && !parameters.quiet)
-        out << "    residual at the round-off of the displacement (the "
-               "force level is near zero: a rigid motion): accepted"
+        out << "    displacement residual at the round-off of the internal "
+               "force (a rigid motion, or a finite-strain stress at a small "
+               "strain): accepted"
             << std::endl;
       if (at_floor && !below_tolerance)
         out << floor_line(residual / force_level,

@@ -15,7 +15,8 @@ namespace Signorini
     absolute_product_norm(const TrilinosWrappers::SparseMatrix &K,
                           const TrilinosWrappers::MPI::Vector  &x,
                           const AffineConstraints<double>      &constraints,
-                          const MPI_Comm                        comm)
+                          const MPI_Comm                        comm,
+                          const TrilinosWrappers::MPI::Vector  &s)
     {
       if (K.m() == 0)
         return 0;
@@ -25,7 +26,10 @@ namespace Signorini
       const Epetra_CrsMatrix &A   = K.trilinos_matrix();
       const auto             &map = x.trilinos_vector().Map();
       const double           *xv  = x.trilinos_vector()[0];
-      double                  sum = 0;
+      // s in its own map (the system's ghost layout may have moved on).
+      const double *sv   = s.size() > 0 ? s.trilinos_vector()[0] : nullptr;
+      const auto   *smap = s.size() > 0 ? &s.trilinos_vector().Map() : nullptr;
+      double        sum  = 0;
       for (int r = 0; r < A.NumMyRows(); ++r)
         {
           if (constraints.is_constrained(
@@ -42,7 +46,12 @@ namespace Signorini
                 TrilinosWrappers::global_column_index(A, columns[k]);
               const int local = map.LID(static_cast<int>(column));
               if (local >= 0)
-                row += std::abs(values[k] * xv[local]);
+                {
+                  const int ls =
+                    smap ? smap->LID(static_cast<int>(column)) : -1;
+                  row += std::abs(values[k]) *
+                         (std::abs(xv[local]) + (ls >= 0 ? sv[ls] : 0.));
+                }
             }
           sum += row * row;
         }

@@ -177,8 +177,16 @@ namespace Signorini
     Contact::ContactStatistics contact_statistics;
     // || |K| |x| || of the last Jacobian K at the state x it was assembled
     // at: the round-off scale of the internal force (evaluate()).
-    double matrix_roundoff    = 0;
-    double jacobian_error_max = 0;
+    double matrix_roundoff = 0;
+    // Finite strain: per displacement DoF, the diameter of the largest cell
+    // around it (zero at the multipliers; ghosted like the state), set by
+    // setup(). The stress of F = I + grad u carries a round-off of eps
+    // itself, not eps |grad u|, as if every position were off by eps h:
+    // the floor takes || |K| (|x| + h) || (doc/robustness.md). Empty at
+    // small strain.
+    bool                          finite_strain = false;
+    TrilinosWrappers::MPI::Vector position_scale;
+    double                        jacobian_error_max = 0;
   };
 } // namespace Signorini
 

@@ -22,13 +22,17 @@ namespace Signorini
      * @p constraints constrains are left out: they are no equations (their
      * residual is zero by construction), and their placeholder diagonal
      * times a constrained multiplier (an axis node's lambda, 1e8 Pa) made
-     * the floor 1e-5 of the force level.
+     * the floor 1e-5 of the force level. A nonempty @p s (ghosted, the
+     * layout of @p x) adds sum_j |K_ij| s_j: an absolute round-off s_j of
+     * unknown j besides eps |x_j| (the positions of a finite-strain body).
      */
     double
-    absolute_product_norm(const TrilinosWrappers::SparseMatrix &K,
-                          const TrilinosWrappers::MPI::Vector  &x,
-                          const AffineConstraints<double>      &constraints,
-                          const MPI_Comm                        comm);
+    absolute_product_norm(
+      const TrilinosWrappers::SparseMatrix &K,
+      const TrilinosWrappers::MPI::Vector  &x,
+      const AffineConstraints<double>      &constraints,
+      const MPI_Comm                        comm,
+      const TrilinosWrappers::MPI::Vector &s = TrilinosWrappers::MPI::Vector());
   } // namespace Solver
 } // namespace Signorini
 
