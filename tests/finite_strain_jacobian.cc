@@ -41,7 +41,8 @@ namespace
   parameter_text(const unsigned int dim,
                  const unsigned int degree,
                  const bool         axisymmetric,
-                 const bool         projected)
+                 const bool         projected,
+                 const std::string &model)
   {
     return "set Dimension = " + std::to_string(dim) +
            "\nset Axisymmetric = " + (axisymmetric ? "true" : "false") +
@@ -53,7 +54,10 @@ namespace
            " end\nend\n"
            "subsection Materials\n subsection Material 1\n"
            "  set Young's modulus = 1000\n  set Poisson's ratio = 0.4\n"
-           "  set Model = neo-Hookean\n  set Kinematics = finite strain\n"
+           "  set Model = " +
+           model +
+           "\n  set Kinematics = finite strain\n"
+           "  subsection J2 plasticity\n   set Yield stress = 1e20\n  end\n"
            " end\nend\n"
            "subsection Boundary conditions\n"
            " set Number of Neumann conditions = 1\n"
@@ -69,12 +73,14 @@ namespace
   std::pair<double, double>
   column_error(const unsigned int degree,
                const bool         axisymmetric,
-               const bool         projected)
+               const bool         projected,
+               const std::string &model     = "neo-Hookean",
+               const double       amplitude = 0.1)
   {
     ParameterHandler            prm;
     const Signorini::Parameters parameters =
       Signorini::read_parameters_from_string(
-        parameter_text(dim, degree, axisymmetric, projected), prm);
+        parameter_text(dim, degree, axisymmetric, projected, model), prm);
     Triangulation<dim>        tria;
     Point<dim>                lower, upper;
     std::vector<unsigned int> cells(dim, 2);
@@ -103,6 +109,10 @@ namespace
     Signorini::Bulk::Assembler<dim> unloaded(
       parameters, mapping, fe, materials, no_pressure, body_force);
     Signorini::Material::History<dim> history;
+    unsigned int                      n_history = 0;
+    for (const auto &[id, material] : materials)
+      n_history = std::max(n_history, material->n_history_values());
+    history.initialize(tria, assembler.quadrature(), n_history);
 
     const IndexSet         owned = dof_handler.locally_owned_dofs();
     DynamicSparsityPattern dsp(dof_handler.n_dofs());
@@ -120,7 +130,7 @@ namespace
     std::uniform_real_distribution<double> uniform(-1, 1);
     TrilinosWrappers::MPI::Vector          u(owned, MPI_COMM_WORLD);
     for (const auto i : owned)
-      u[i] = 0.1 / degree * uniform(rng);
+      u[i] = amplitude / degree * uniform(rng);
     u.compress(VectorOperation::insert);
 
     const auto residual = [&](const TrilinosWrappers::MPI::Vector   &x,
@@ -194,6 +204,19 @@ main(int argc, char **argv)
       report("plane strain Q2" + v, column_error<2>(2, false, projected));
       report("axisymmetric Q1" + v, column_error<2>(1, true, projected));
       report("3D Q1" + v, column_error<3>(1, false, projected));
+    }
+  // J2 plasticity at finite strain, elastic (yield stress 1e20): Hencky's
+  // log strain through the eigenvalues of b, also at a displacement of
+  // 1e-4 where they nearly coincide (issue 62, defect 6).
+  for (const double amplitude : {0.1, 1e-4})
+    {
+      const std::string v = " J2 elastic, |u| " + std::to_string(amplitude);
+      report("plane strain Q1" + v,
+             column_error<2>(1, false, false, "J2 plasticity", amplitude));
+      report("axisymmetric Q1" + v,
+             column_error<2>(1, true, false, "J2 plasticity", amplitude));
+      report("3D Q1" + v,
+             column_error<3>(1, false, false, "J2 plasticity", amplitude));
     }
   return 0;
 }
