@@ -95,6 +95,36 @@ namespace Signorini
 
 
     template <int dim>
+    std::string
+    Pairing<dim>::non_finite_motion(const double time) const
+    {
+      for (unsigned int p = 0; p < motions.size(); ++p)
+        if (motions[p])
+          {
+            const auto m      = motions[p]->at(time);
+            bool       moved  = true;
+            bool       turned = true;
+            for (unsigned int i = 0; i < dim; ++i)
+              {
+                moved = moved && std::isfinite(m.translation[i]);
+                for (unsigned int j = 0; j < dim; ++j)
+                  turned = turned && std::isfinite(m.rotation[i][j]);
+              }
+            if (!moved || !turned)
+              {
+                std::ostringstream s;
+                s << "; " << internal::pair_name(p) << ", parameter '"
+                  << (moved ? "Obstacle rotation" : "Obstacle motion")
+                  << "' is not finite at t = " << std::scientific
+                  << std::setprecision(4) << time;
+                return s.str();
+              }
+          }
+      return "";
+    }
+
+
+    template <int dim>
     std::array<double, 2>
     Pairing<dim>::obstacle_increment_products(const double time,
                                               const double start,

@@ -1,6 +1,7 @@
 // One load step: the predictor, the geometric loop of pairings and Newton
 // solves, what the load stepper needs after a converged or failed
 // (sub)step.
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
 #include <signorini/core/load_step.h>
@@ -86,6 +87,30 @@ namespace Signorini
   {
     start(time, step_start_time, resume);
     iterations = 0;
+    // A Dirichlet expression that is not finite at this time: the step
+    // fails before anything is paired or solved at a NaN state (the
+    // pairing would project NaN positions onto the master faces).
+    bool finite = true;
+    for (const auto &line : system.constraints_values.get_lines())
+      finite = finite && std::isfinite(line.inhomogeneity);
+    if (Utilities::MPI::min(finite ? 1 : 0, system.mpi_communicator) == 0)
+      {
+        newton_failure_kind = NewtonFailure::non_finite;
+        newton_failure      = "the prescribed displacements are not finite" +
+                         equilibrium.non_finite_cause();
+        return false;
+      }
+    // The same for a rigid obstacle's motion (its points would pair with
+    // nothing and the body would come free: a silent wrong answer).
+    if (contact.active())
+      if (const std::string motion = contact.non_finite_motion(time);
+          !motion.empty())
+        {
+          newton_failure_kind = NewtonFailure::non_finite;
+          newton_failure =
+            "the prescribed obstacle motion is not finite" + motion;
+          return false;
+        }
     if (!contact.active())
       return newton(iterations);
 
@@ -539,8 +564,15 @@ namespace Signorini
     report.position.time = time;
     system.make_constraints(time, boundary_conditions, contact);
     boundary_conditions.set_load_time(time);
-    system.state = last_converged;
+    system.state            = last_converged;
+    system.state_step_start = last_converged;
     system.update_solution();
+    // The pairing is the failed attempt's (at a state that may be NaN):
+    // paired again at the converged state, whose last geometric iteration
+    // it reproduces, so that the written contact forces and reactions are
+    // the converged sub-step's.
+    if (contact.active())
+      pair(time, time);
     equilibrium.evaluate(false);
   }
 

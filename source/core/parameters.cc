@@ -90,8 +90,11 @@ namespace Signorini
                       "Cells with this material id use this material.");
     prm.declare_entry("Young's modulus",
                       "1",
-                      Patterns::Double(1e-300),
-                      "Young's modulus E [Pa], > 0.");
+                      Patterns::Double(1e-20, 1e20),
+                      "Young's modulus E [Pa], 1e-20 to 1e20 (any unit "
+                      "system of a solid: outside, the displacements load / "
+                      "E and the stiffness leave the range where double "
+                      "precision resolves them next to the positions).");
     prm.declare_entry("Poisson's ratio",
                       "0.3",
                       Patterns::Double(-0.999999, 0.499999),

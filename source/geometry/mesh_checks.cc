@@ -1,15 +1,19 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/reference_cell.h>
+#include <deal.II/numerics/rtree.h>
 
 #include <signorini/geometry/mesh_checks.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <map>
 #include <numeric>
 #include <regex>
+#include <set>
 #include <sstream>
 
 namespace Signorini
@@ -176,6 +180,72 @@ namespace Signorini
         return false;
       }
 
+      // The structure of an ASCII .msh text that GridIn reports only by a
+      // token it did not expect: the format version (1, 2 and 4 are
+      // read), a section the file ends inside (a truncated file), a node
+      // coordinate that is not a finite number. Messages name lines, not
+      // what they hold.
+      void
+      check_gmsh_structure(const std::string &text, const std::string &where)
+      {
+        std::istringstream in(text);
+        std::string        line, open;
+        unsigned long      number = 0, open_line = 0;
+        while (std::getline(in, line))
+          {
+            ++number;
+            line = Utilities::trim(line);
+            if (line.empty() || line[0] != '$')
+              {
+                if (open == "$Nodes" || open == "$NOD")
+                  {
+                    std::istringstream tokens(line);
+                    std::string        token;
+                    while (tokens >> token)
+                      {
+                        char        *end   = nullptr;
+                        const double value = std::strtod(token.c_str(), &end);
+                        if (end == token.c_str() || *end != '\0' ||
+                            !std::isfinite(value))
+                          throw InputError(
+                            where + ": line " + std::to_string(number) +
+                            ", in its node section, is not a list of finite "
+                            "numbers (a coordinate that is NaN, infinite or "
+                            "not a number). Export the mesh again.");
+                      }
+                  }
+                else if (open == "$MeshFormat")
+                  {
+                    std::istringstream tokens(line);
+                    double             version = 0;
+                    if (tokens >> version && !(version >= 1 && version < 3) &&
+                        !(version >= 4 && version < 5))
+                      throw InputError(
+                        where + ": Gmsh format version " +
+                        Utilities::to_string(version) +
+                        ", which deal.II's reader does not read. Save the "
+                        "mesh in format 2.2 or 4.1 (ASCII).");
+                  }
+                continue;
+              }
+            if (line.compare(0, 4, "$End") == 0 || line == "$ENDNOD" ||
+                line == "$ENDELM")
+              open.clear();
+            else if (open.empty())
+              {
+                open      = line;
+                open_line = number;
+              }
+          }
+        if (!open.empty())
+          throw InputError(where +
+                           ": the file ends inside the section that "
+                           "starts at line " +
+                           std::to_string(open_line) +
+                           " (it has no end marker): the file is "
+                           "truncated. Export the mesh again.");
+      }
+
       void
       check_gmsh_cells(const std::string &text,
                        const unsigned int dim,
@@ -186,6 +256,7 @@ namespace Signorini
                            ": a binary Gmsh file, which deal.II's reader "
                            "cannot read. Save the mesh as ASCII ('Mesh.Binary "
                            "= 0;', Gmsh's default).");
+        check_gmsh_structure(text, where);
         std::map<std::string, unsigned long> all;
         bool recombine = false, higher_order = false;
         for (const auto &[type, n] : gmsh_element_types(text))
@@ -527,6 +598,88 @@ namespace Signorini
     }
 
 
+    template <int dim>
+    std::string
+    overlap_warning(const std::vector<const Triangulation<dim> *> &bodies,
+                    const std::vector<MeshPart>                   &parts,
+                    const ContactParameters                       &contact)
+    {
+      const auto body_with = [&](const std::vector<types::boundary_id> &ids) {
+        for (const auto id : ids)
+          for (const auto &part : parts)
+            if (part.boundary_ids.count(id))
+              return static_cast<int>(part.body);
+        return -1;
+      };
+      std::set<std::pair<unsigned int, unsigned int>> joined;
+      for (const auto &pair : contact.pairs)
+        if (pair.master_is_body())
+          {
+            const int s = body_with(pair.slave_ids);
+            const int m = body_with(pair.master_ids);
+            if (s >= 0 && m >= 0)
+              joined.insert(std::minmax<unsigned int>(s, m));
+          }
+      const MappingQ1<dim> mapping;
+      for (unsigned int a = 0; a < bodies.size(); ++a)
+        {
+          using Cell = typename Triangulation<dim>::active_cell_iterator;
+          std::vector<std::pair<BoundingBox<dim>, Cell>> boxes;
+          for (const auto &cell : bodies[a]->active_cell_iterators())
+            boxes.emplace_back(cell->bounding_box(), cell);
+          const auto tree = pack_rtree(boxes);
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            {
+              if (a == b || joined.count(std::minmax(a, b)))
+                continue;
+              const auto &used = bodies[b]->get_used_vertices();
+              const auto &x    = bodies[b]->get_vertices();
+              for (unsigned int v = 0; v < x.size(); ++v)
+                {
+                  if (!used[v])
+                    continue;
+                  std::vector<std::pair<BoundingBox<dim>, Cell>> hits;
+                  tree.query(boost::geometry::index::intersects(x[v]),
+                             std::back_inserter(hits));
+                  for (const auto &hit : hits)
+                    try
+                      {
+                        const Point<dim> p =
+                          mapping.transform_real_to_unit_cell(hit.second, x[v]);
+                        bool inside = true;
+                        for (unsigned int d = 0; d < dim; ++d)
+                          inside = inside && p[d] > 1e-6 && p[d] < 1 - 1e-6;
+                        if (!inside)
+                          continue;
+                        std::ostringstream s;
+                        s << "Warning: body " << b + 1 << " overlaps body "
+                          << a + 1 << " (its vertex (";
+                        for (unsigned int d = 0; d < dim; ++d)
+                          s << (d > 0 ? ", " : "") << x[v][d];
+                        s << ") lies inside it) and no contact pair joins "
+                             "them: they pass through each other. Give them "
+                             "a 'Contact/Pair k', or move one.";
+                        return s.str();
+                      }
+                    catch (const ExceptionBase &)
+                      {
+                        // No unit point: the vertex is not in this cell.
+                      }
+                }
+            }
+        }
+      return "";
+    }
+
+
+    template std::string
+    overlap_warning<2>(const std::vector<const Triangulation<2> *> &,
+                       const std::vector<MeshPart> &,
+                       const ContactParameters &);
+    template std::string
+    overlap_warning<3>(const std::vector<const Triangulation<3> *> &,
+                       const std::vector<MeshPart> &,
+                       const ContactParameters &);
     template void
     check_reference_cells<2>(const Triangulation<2> &, const std::string &);
     template void

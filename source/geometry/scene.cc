@@ -1,4 +1,5 @@
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <regex>
 #include <set>
@@ -600,6 +602,8 @@ namespace Signorini
 
       const auto           &bodies = parameters.geometry.bodies;
       std::vector<MeshPart> parts; // the bodies, for the contact checks
+      // Their coarse meshes, for the overlap check.
+      std::vector<std::unique_ptr<Triangulation<dim>>> coarse;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           Triangulation<dim> body_tria;
@@ -607,6 +611,8 @@ namespace Signorini
           build_body(bodies[b], b, parameters.input_directory, body_tria);
           check_cells(body_tria, b, bodies[b]);
           add_mesh_parts(body_tria, b, parts);
+          coarse.push_back(std::make_unique<Triangulation<dim>>());
+          coarse.back()->copy_triangulation(body_tria);
 
           // Curved surfaces: their manifold on the curved faces. A generated
           // segment's few coarse cells also get transfinite interpolation in
@@ -656,6 +662,16 @@ namespace Signorini
         }
 
       check_contact_surfaces(parameters.contact, parts);
+      {
+        std::vector<const Triangulation<dim> *> meshes;
+        for (const auto &m : coarse)
+          meshes.push_back(m.get());
+        const std::string warning =
+          overlap_warning(meshes, parts, parameters.contact);
+        if (!warning.empty() && Utilities::MPI::this_mpi_process(
+                                  triangulation.get_communicator()) == 0)
+          std::cout << warning << std::endl;
+      }
       check_global_refinements(cells.size(), parameters);
       triangulation.create_triangulation(vertices, cells, subcells);
       for (auto &[id, manifold] : manifolds)

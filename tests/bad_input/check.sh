@@ -4,8 +4,9 @@
 #  - exits with the code of the file's "# exit: N" line (default 1: an input
 #    error; 2: a run stopped, 4: a reference check failed),
 #  - prints the text of its "# expect:" line exactly once (on any rank count),
-#  - and shows no sign of a crash (segfault, uncaught exception, abort,
-#    deal.II stack trace, MPI_ABORT).
+#  - shows no sign of a crash (segfault, uncaught exception, abort,
+#    deal.II stack trace, MPI_ABORT),
+#  - and prints none of the texts of its "# absent:" lines.
 # A case that is a directory (a directory given as the parameter file) keeps
 # these lines in the file 'expect' inside it.
 set -u
@@ -32,7 +33,12 @@ for marker in "Stacktrace" "terminate called" "MPI_ABORT" "Segmentation fault" \
               "Uncaught" "Exception on processing"; do
   if grep -qF -- "$marker" out.txt; then crashes="$crashes '$marker'"; fi
 done
+absent_found=""
+while IFS= read -r text; do
+  [ -n "$text" ] && grep -qF -- "$text" out.txt && absent_found="$absent_found '$text'"
+done < <(sed -n 's/^# absent: //p' "$meta")
 rm -rf "$dir"
+if [ -n "$absent_found" ]; then echo "FAIL: the output shows:$absent_found"; exit 1; fi
 if [ -n "$crashes" ]; then echo "FAIL: the output shows a crash:$crashes"; exit 1; fi
 if [ "$rc" -ge 128 ]; then echo "FAIL: killed by signal $((rc - 128))"; exit 1; fi
 if [ "$rc" -ne "$want_rc" ]; then echo "FAIL: exit code $rc, expected $want_rc"; exit 1; fi

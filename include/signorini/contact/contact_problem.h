@@ -271,6 +271,13 @@ namespace Signorini
         return history.end_geometric_iteration(pairing.points(), g);
       }
 
+      /** Pairing::non_finite_motion(). */
+      std::string
+      non_finite_motion(const double time) const
+      {
+        return pairing.non_finite_motion(time);
+      }
+
       /** Pairing::obstacle_increment_products(). */
       std::array<double, 2>
       obstacle_increment_products(const double time,

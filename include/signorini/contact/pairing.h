@@ -126,6 +126,12 @@ namespace Signorini
                                   const double start,
                                   const double previous) const;
 
+      /** "; subsection 'Contact/Pair k', parameter 'Obstacle motion' is not
+       * finite at t = ..." for the first obstacle whose motion at @p time
+       * is not finite (translation, rotation), empty if all are. */
+      std::string
+      non_finite_motion(const double time) const;
+
       /** "mortar (...)" or the fixed rule's name and the number of
        * points (collective). */
       std::string

@@ -113,6 +113,19 @@ namespace Signorini
     void
     check_contact_surfaces(const ContactParameters     &contact,
                            const std::vector<MeshPart> &parts);
+
+    /**
+     * A warning for the log if two bodies' coarse meshes overlap (a vertex
+     * of one strictly inside a cell of the other) while no contact pair
+     * joins them (they would pass through each other: a file cut before
+     * its contact section runs without one); empty otherwise. @p bodies:
+     * the coarse mesh of each body, in body order.
+     */
+    template <int dim>
+    std::string
+    overlap_warning(const std::vector<const Triangulation<dim> *> &bodies,
+                    const std::vector<MeshPart>                   &parts,
+                    const ContactParameters                       &contact);
   } // namespace Geometry
 } // namespace Signorini
 
