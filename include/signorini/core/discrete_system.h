@@ -28,13 +28,40 @@ namespace Signorini
   using namespace dealii;
 
   /**
-   * A plain aggregate, shared by reference: Simulation sets it up and
-   * adapts it, EquilibriumProblem assembles and solves on it, LoadStep
-   * moves its state along the load path, Postprocess::Results writes
-   * it. The residual convention is the one of doc/theory.md section 4:
+   * A plain aggregate, shared by reference: it holds data and no policy.
+   * The residual convention is the one of doc/theory.md section 4:
    * R = F_int - F_ext, Newton solves K dU = -R, with the Dirichlet values
    * on the iterate (constraints_values) and homogeneous constraints on the
    * update (constraints_update).
+   *
+   * Who writes what (one writer per rule; everyone else reads):
+   * - mesh, fe, dof_handler, index sets, model_size: setup() and
+   *   measure_mesh(), called by Simulation (start, adaptivity);
+   * - constraints_*: make_constraints() and
+   *   make_first_update_constraints(), called by LoadStep (the time of a
+   *   step, its first update) and Simulation (setup);
+   * - matrix, layout_count: make_sparsity() (called at each pairing by
+   *   LoadStep, by Simulation without contact); the entries:
+   *   EquilibriumProblem (assembly);
+   * - state between Newton iterates: LoadStep alone (the predictor in
+   *   start(), the initial multipliers at the first pairing, the values of
+   *   a first update already met in arm_first_update(), a retry or a
+   *   restart from the last converged state); within a Newton solve:
+   *   EquilibriumProblem::set_iterate(), called by Solver::NewtonSolver
+   *   (updates and line-search trials) only; on a new mesh: Simulation
+   *   (reinit, then the transfer of adaptivity). The rule "the first
+   *   update of a step carries the Dirichlet increment" is LoadStep's
+   *   (arm_first_update() hands the constraints to EquilibriumProblem,
+   *   which applies them in the next linear solve only);
+   * - state_step_start: LoadStep::start() (and a restore or restart),
+   *   Simulation's transfer on a new mesh;
+   * - solution: update_solution(), by whoever wrote state;
+   * - newton_rhs, bulk_rhs, internal_force, external_force,
+   *   contact_force: EquilibriumProblem (evaluation);
+   * - history: Bulk::Assembler::update_history() at a converged
+   *   (sub)step (LoadStep::accept_step()); Simulation on a new mesh (and
+   *   back to the sub-step's start to solve it again there). Contact
+   *   statuses are not here: Contact::ContactProblem owns them.
    */
   template <int dim>
   struct DiscreteSystem
