@@ -224,7 +224,6 @@ namespace Signorini
       // a penalty of stiffness rho_n on the master. One whose nodes all
       // hold the same tangents (Q) takes them into its law: sticking, no
       // rho_t v along them (the nodal rule's points are nodes).
-      e.point_law = e.law;
       {
         bool contact_out = !e.by_node, first = true, same_held = true;
         for (unsigned int l = 0; l < e.n_l; ++l)
@@ -240,7 +239,7 @@ namespace Signorini
           s.held = Tensor<2, dim - 1>();
       }
       e.r = e.by_node ? node_statuses.response(point, s) :
-                        evaluate_contact_law(s, e.point_law);
+                        evaluate_contact_law(s, e.law);
 
       // Friction status per node: the friction force of the multipliers,
       // -mu lambda_l T Lambda_l of each node with active friction
@@ -325,11 +324,11 @@ namespace Signorini
       if (frozen)
         {
           // What the plain law says at this iterate.
-          PointState<dim> plain       = e.s;
-          plain.freeze_contact        = false;
-          plain.frozen_slip_direction = Tensor<1, dim>();
-          plain.freeze_stick          = false;
-          const auto        rp = evaluate_contact_law(plain, e.point_law);
+          PointState<dim> plain          = e.s;
+          plain.freeze_contact           = false;
+          plain.frozen_slip_direction    = Tensor<1, dim>();
+          plain.freeze_stick             = false;
+          const auto        rp           = evaluate_contact_law(plain, e.law);
           const PointStatus plain_status = label(rp);
           ++stats.n_frozen;
           const bool violated = plain_status != status ||

@@ -77,10 +77,9 @@ namespace Signorini
     template <int dim>
     struct Assembler<dim>::PointEvaluation
     {
-      // The law of the pair; the point's own (no friction where its
-      // multiplier nodes are all excluded from friction); friction on;
-      // statuses per multiplier node (node path) or per point.
-      LawParameters law, point_law;
+      // The law of the pair; friction on; statuses per multiplier node
+      // (node path) or per point.
+      LawParameters law;
       bool          fric = false, by_node = false;
 
       // Slave point: N_e[a], the shape value of local displacement column
