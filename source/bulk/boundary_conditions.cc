@@ -598,7 +598,8 @@ namespace Signorini
       const unsigned int n = dirichlet_dofs.size();
       Supports<dim>      s{std::vector<Tensor<1, dim>>(n),
                       std::vector<Tensor<1, dim>>(n),
-                      std::vector<std::array<bool, dim>>(n)};
+                      std::vector<std::array<bool, dim>>(n),
+                      {}};
       // The support force f at a node held by conditions with relations
       // a_k . u = g_k (a Cartesian value: a_k = e_c) is the sum of their
       // forces mu_k a_k: the equilibrium of the node's free motions (those
@@ -622,9 +623,14 @@ namespace Signorini
             }
           G.gauss_jordan();
           G.vmult(mu, rhs);
+          Tensor<1, dim> node_force;
           for (unsigned int i = 0; i < m; ++i)
-            s.reactions[held.relations[i].first] +=
-              mu(i) * held.relations[i].second;
+            {
+              s.reactions[held.relations[i].first] +=
+                mu(i) * held.relations[i].second;
+              node_force += mu(i) * held.relations[i].second;
+            }
+          s.node_forces.emplace_back(held.dofs[0], node_force);
         }
       for (unsigned int k = 0; k < n; ++k)
         {

@@ -5,6 +5,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <signorini/core/errors.h>
+#include <signorini/geometry/parts.h>
 #include <signorini/postprocess/output_files.h>
 #include <signorini/postprocess/results.h>
 
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace Signorini
@@ -156,47 +158,62 @@ namespace Signorini
     }
 
 
-    // Sum over the DoFs of R = F_int - F_ext + F_contact: the reactions
-    // where supports hold the body, zero elsewhere at equilibrium; the
+    // Sum over the DoFs of a body of R = F_int - F_ext + F_contact: the
+    // reactions where supports hold it, zero elsewhere at equilibrium; the
     // internal forces of a body sum to zero (its stress does no work in a
-    // rigid translation). So sum_k reaction_k + sum F_ext - sum F_contact
-    // = 0, where the reactions are charged to the constraint lines of the
-    // conditions (BoundaryConditions::supports()) and F_ext, F_contact are
-    // summed over every DoF: a support force counted twice or left out,
-    // or a load missing at the constrained DoFs, breaks it.
+    // rigid translation). So, per body and component, the sum of its
+    // support forces + its loads - the contact forces on it = 0, where the
+    // support forces are those charged to the conditions (BoundaryConditions
+    // ::supports()) and the loads and contact forces are summed over the
+    // body's DoFs: a support force counted twice, left out or charged to
+    // the wrong body, a load missing at the constrained DoFs, or a contact
+    // force on one body without its reaction on the other, breaks it.
     template <int dim>
     void
     Results<dim>::check_force_balance()
     {
-      Tensor<1, dim>            loads, contact_forces, reactions;
-      std::vector<unsigned int> component(system.dof_handler.n_dofs(), 0);
-      {
-        std::vector<types::global_dof_index> dofs(system.fe.n_dofs_per_cell());
-        for (const auto &cell : system.dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              cell->get_dof_indices(dofs);
-              for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (system.fe.system_to_component_index(i).first < dim)
-                  component[dofs[i]] =
-                    system.fe.system_to_component_index(i).first;
-            }
-      }
-      for (const auto i : system.locally_owned)
+      const auto  &tria    = system.dof_handler.get_triangulation();
+      unsigned int n_parts = 0;
+      const auto   parts   = Geometry::coarse_parts(tria, n_parts);
+      // Per body: support forces, loads, contact forces.
+      std::vector<std::array<Tensor<1, dim>, 3>> sums(n_parts);
+      std::vector<Tensor<1, dim>>                centre(n_parts);
+      std::vector<double>                        n_cells(n_parts, 0);
+      std::map<types::global_dof_index, std::pair<unsigned int, unsigned int>>
+                                           of_dof; // body, component
+      std::vector<types::global_dof_index> dofs(system.fe.n_dofs_per_cell());
+      for (const auto &cell : system.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const unsigned int b = Geometry::part_of<dim>(cell, parts);
+            centre[b] += cell->center();
+            n_cells[b] += 1;
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              {
+                const unsigned int c =
+                  system.fe.system_to_component_index(i).first;
+                if (c < dim && system.locally_owned.is_element(dofs[i]))
+                  of_dof.emplace(dofs[i], std::make_pair(b, c));
+              }
+          }
+      for (const auto &[i, body_component] : of_dof)
         {
-          loads[component[i]] += system.external_force[i];
-          contact_forces[component[i]] += system.contact_force[i];
+          const auto [b, c] = body_component;
+          sums[b][1][c] += system.external_force[i];
+          sums[b][2][c] += system.contact_force[i];
         }
-      loads = Utilities::MPI::sum(loads, system.mpi_communicator);
-      contact_forces =
-        Utilities::MPI::sum(contact_forces, system.mpi_communicator);
-      for (const auto &r : supports.reactions)
-        reactions += r;
+      for (const auto &[dof, f] : supports.node_forces)
+        sums[of_dof.at(dof).first][0] += f;
+      for (unsigned int b = 0; b < n_parts; ++b)
+        {
+          for (auto &t : sums[b])
+            t = Utilities::MPI::sum(t, system.mpi_communicator);
+          centre[b]  = Utilities::MPI::sum(centre[b], system.mpi_communicator);
+          n_cells[b] = Utilities::MPI::sum(n_cells[b], system.mpi_communicator);
+        }
+
       const double tolerance = 1e-6;
-      double       worst     = 0;
-      for (unsigned int d = parameters.axisymmetric ? 1 : 0; d < dim; ++d)
-        worst = std::max(worst,
-                         std::abs(reactions[d] + loads[d] - contact_forces[d]));
       // Below the force of a strain of 1e-12 on the model's size the
       // forces are round-off (a rigid motion: force level and reactions
       // both of order eps E h^(dim-1)).
@@ -205,17 +222,32 @@ namespace Signorini
         stiffest = std::max(stiffest, m.youngs_modulus);
       const double floor =
         1e-12 * stiffest * std::pow(system.model_size, dim - 1);
+      double       worst      = 0;
+      unsigned int worst_body = 0;
+      for (unsigned int b = 0; b < n_parts; ++b)
+        for (unsigned int d = parameters.axisymmetric ? 1 : 0; d < dim; ++d)
+          {
+            const double e =
+              std::abs(sums[b][0][d] + sums[b][1][d] - sums[b][2][d]);
+            if (e > worst)
+              {
+                worst      = e;
+                worst_body = b;
+              }
+          }
       if (worst <= tolerance * force_scale + floor)
         return;
+      const auto        &s     = sums[worst_body];
       const double       error = force_scale > 0 ? worst / force_scale : worst;
       std::ostringstream text;
       text << std::scientific << std::setprecision(4)
-           << "force balance of the bodies: reactions " << reactions
-           << " + loads " << loads << " - contact forces of the "
-           << "rigid obstacles " << contact_forces << " = "
-           << reactions + loads - contact_forces << std::setprecision(1) << ", "
-           << error << " of the force level (tolerance " << tolerance
-           << "): FAIL";
+           << "force balance of body " << worst_body + 1 << " of " << n_parts
+           << " (around "
+           << centre[worst_body] / std::max(1., n_cells[worst_body])
+           << "): reactions " << s[0] << " + loads " << s[1]
+           << " - contact forces on it " << s[2] << " = " << s[0] + s[1] - s[2]
+           << std::setprecision(1) << ", " << error
+           << " of the force level (tolerance " << tolerance << "): FAIL";
       CheckResult check;
       check.what      = "force balance";
       check.error     = error;

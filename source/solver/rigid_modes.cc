@@ -6,6 +6,7 @@
 
 #include <Epetra_CrsMatrix.h>
 
+#include <signorini/geometry/parts.h>
 #include <signorini/solver/rigid_modes.h>
 
 #include <algorithm>
@@ -55,32 +56,6 @@ namespace Signorini
 
     namespace
     {
-      // Connected parts of the coarse mesh (known on every rank), numbered
-      // in the order of their first coarse cell.
-      template <int dim>
-      std::vector<unsigned int>
-      coarse_parts(const Triangulation<dim> &tria, unsigned int &n_parts)
-      {
-        std::vector<unsigned int> parent(tria.n_vertices());
-        std::iota(parent.begin(), parent.end(), 0);
-        const auto root = [&](unsigned int v) {
-          while (parent[v] != v)
-            v = parent[v] = parent[parent[v]];
-          return v;
-        };
-        for (auto cell = tria.begin(0); cell != tria.end(0); ++cell)
-          for (const unsigned int v : cell->vertex_indices())
-            parent[root(cell->vertex_index(v))] = root(cell->vertex_index(0));
-        std::vector<unsigned int>            part(tria.n_cells(0));
-        std::map<unsigned int, unsigned int> number;
-        for (auto cell = tria.begin(0); cell != tria.end(0); ++cell)
-          part[cell->index()] =
-            number.emplace(root(cell->vertex_index(0)), number.size())
-              .first->second;
-        n_parts = number.size();
-        return part;
-      }
-
       // A pin candidate: the largest |t_i|, then the smallest position.
       struct Candidate
       {
@@ -126,7 +101,7 @@ namespace Signorini
       owned                = owned_system;
       const auto  &tria    = dof_handler.get_triangulation();
       unsigned int n_parts = 0;
-      const auto   part    = coarse_parts(tria, n_parts);
+      const auto   part    = Geometry::coarse_parts(tria, n_parts);
 
       // Each part, and with several parts all of them together (two free
       // bodies pressed together hold each other, not their joint motion).

@@ -45,6 +45,11 @@ namespace Signorini
       std::vector<Tensor<1, dim>>        reactions;
       std::vector<Tensor<1, dim>>        displacement;
       std::vector<std::array<bool, dim>> components;
+      /** The support force at each locally owned held node, the sum of
+       * what reactions charges to each of its conditions, keyed by the
+       * node's x DoF (the force balance of each body sums them). */
+      std::vector<std::pair<types::global_dof_index, Tensor<1, dim>>>
+        node_forces;
     };
 
     template <int dim>

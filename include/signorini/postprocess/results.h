@@ -69,11 +69,11 @@ namespace Signorini
     private:
       void
       compute_reactions();
-      /** The balance of the bodies, summed over them: the reactions of
-       * all supports, the loads and the forces of the rigid obstacles
-       * cancel (a body's internal forces sum to zero; in an axisymmetric
-       * model along the axis only). A FAIL check if they do not, to
-       * 1e-6 of the force level; nothing printed if they do. */
+      /** The balance of each body (a connected part of the mesh): the
+       * reactions of its supports, its loads and the contact forces on it
+       * cancel (its internal forces sum to zero; in an axisymmetric model
+       * along the axis only). A FAIL check naming the body if they do
+       * not, to 1e-6 of the force level; nothing printed if they do. */
       void
       check_force_balance();
       /** Displacement component at a point of a body; an InputError
