@@ -24,7 +24,11 @@ namespace
            "  -h, --help            print this message\n"
            "  --print-parameters    print every parameter with its default "
            "value\n"
-           "                        and documentation (prm format)\n\n"
+           "                        and documentation (prm format)\n"
+           "  --check <file.prm>... read each file, build its mesh and "
+           "unknowns and\n"
+           "                        check the input against them, without "
+           "solving\n\n"
            "Run in parallel with: mpirun -np N signorini file.prm\n";
   }
 
@@ -88,6 +92,34 @@ namespace
                        "OPENBLAS_CORETYPE=") +
            better + "\n(scripts/run and scripts/benchmark set it).\n";
   }
+
+
+  // signorini --check: each file read and checked against its mesh and
+  // unknowns, nothing solved; one line per file, exit code 1 if any input
+  // is refused.
+  int
+  check_files(const std::vector<std::string> &files, const bool root)
+  {
+    int code = 0;
+    for (const auto &file : files)
+      try
+        {
+          Signorini::run_from_file(file, MPI_COMM_WORLD, true);
+          if (root)
+            std::cout << "\nsignorini: the input of " << file
+                      << " is complete and consistent with its mesh "
+                         "(--check: nothing solved)."
+                      << std::endl;
+        }
+      catch (const Signorini::InputError &e)
+        {
+          if (root)
+            std::cerr << "\nsignorini: input error in " << file << ": "
+                      << e.what() << std::endl;
+          code = 1;
+        }
+    return code;
+  }
 } // namespace
 
 int
@@ -117,7 +149,9 @@ main(int argc, char *argv[])
         prm.print_parameters(std::cout, ParameterHandler::PRM);
       return 0;
     }
-  if (args.size() != 1 || args[0][0] == '-')
+  // --check takes one or more files (a directory of scenes in one start).
+  const bool check_only = args.size() >= 2 && args[0] == "--check";
+  if (!check_only && (args.size() != 1 || args[0][0] == '-'))
     {
       if (first_rank())
         print_usage(std::cerr);
@@ -132,6 +166,8 @@ main(int argc, char *argv[])
 
   try
     {
+      if (check_only)
+        return check_files({args.begin() + 1, args.end()}, root);
       // A run whose reference checks failed kept its results but did not
       // reproduce its reference: exit code 4 for scripts and CI.
       if (Signorini::run_from_file(args[0], MPI_COMM_WORLD) > 0)

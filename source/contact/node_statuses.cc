@@ -176,12 +176,18 @@ namespace Signorini
                               ActiveSetHistory<dim>               &history,
                               ContactStatistics                   &stats)
     {
-      const NodeSums sums    = gather_sums(state, start);
-      unsigned int   changed = 0;
+      const NodeSums                    sums    = gather_sums(state, start);
+      unsigned int                      changed = 0;
+      std::set<types::global_dof_index> extrapolated; // decided below
+      for (const auto &[x_dof, info] : surfaces.nodes())
+        if (!info.closure.empty())
+          extrapolated.insert(info.lambda);
       for (const auto &face : surfaces.slave_faces())
         if (node_status_pair[face.pair])
           for (const auto dof : face.lambda_dofs)
             {
+              if (extrapolated.count(dof) > 0)
+                continue;
               const bool active =
                 sums.P[dof] > 0 &&
                 node_in_contact(state[dof],
@@ -198,6 +204,27 @@ namespace Signorini
                 ++changed;
               node_active[dof] = active;
             }
+      // A node whose multiplier is extrapolated from its two neighbours (on
+      // the axis of quadratic axisymmetric faces: its weight D is zero, or
+      // round-off, so that lambda - rho_n G / D above was a sign of
+      // round-off and differed between unit systems) takes the status of
+      // the nearer of them.
+      for (const auto &[x_dof, info] : surfaces.nodes())
+        if (!info.closure.empty())
+          {
+            const auto it_from = node_active.find(
+              surfaces.nodes().at(info.closure.front().first).lambda);
+            if (it_from == node_active.end())
+              continue; // not a pair with statuses per node
+            const bool active = it_from->second;
+            const auto it     = node_active.find(info.lambda);
+            if (it != node_active.end() && it->second == active)
+              continue;
+            if (surfaces.owned_multipliers().is_element(info.lambda) &&
+                (it != node_active.end() || active))
+              ++changed;
+            node_active[info.lambda] = active;
+          }
       if (any_friction_node || any_held_node)
         changed += decide_friction(state, sums, new_iterate, history, stats);
       return changed;

@@ -369,6 +369,13 @@ namespace Signorini
         names.push_back("slip_" + std::to_string(k + 1));
       std::vector<TrilinosWrappers::MPI::Vector> sums(
         names.size() + 1, writable_vector(owned, relevant, comm));
+      // The same with |psi|: where the psi-weights of a node cancel (the
+      // slave node on the axis of quadratic axisymmetric faces, whose
+      // weight int psi 2 pi r is zero), the psi-average is a ratio of
+      // round-off (p = -3e13 there); the |psi|-average of the points
+      // around it is taken instead.
+      std::vector<TrilinosWrappers::MPI::Vector> abs_sums(
+        names.size() + 1, writable_vector(owned, relevant, comm));
 
       std::vector<types::global_dof_index> scalar_cell_dofs(
         scalar_dofs.get_fe().n_dofs_per_cell());
@@ -411,19 +418,27 @@ namespace Signorini
               if (node_statuses.by_node(face.pair))
                 values[2] = node_status(face.lambda_dofs[l]);
               for (unsigned int v = 0; v < values.size(); ++v)
-                add_entry(sums[v], d, w * values[v]);
+                {
+                  add_entry(sums[v], d, w * values[v]);
+                  add_entry(abs_sums[v], d, std::abs(w) * values[v]);
+                }
               add_entry(sums.back(), d, w);
+              add_entry(abs_sums.back(), d, std::abs(w));
             }
         }
       for (auto &s : sums)
+        s.compress(VectorOperation::add);
+      for (auto &s : abs_sums)
         s.compress(VectorOperation::add);
       std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector>> result;
       for (unsigned int v = 0; v < names.size(); ++v)
         {
           TrilinosWrappers::MPI::Vector owned_values(owned, comm);
           for (const auto i : owned)
-            if (sums.back()[i] != 0)
+            if (std::abs(sums.back()[i]) > 1e-8 * abs_sums.back()[i])
               owned_values[i] = sums[v][i] / sums.back()[i];
+            else if (abs_sums.back()[i] > 0)
+              owned_values[i] = abs_sums[v][i] / abs_sums.back()[i];
           owned_values.compress(VectorOperation::insert);
           TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
           ghosted = owned_values;

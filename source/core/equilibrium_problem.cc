@@ -125,6 +125,18 @@ namespace Signorini
     // residual at every iterate and again with the Jacobian for each
     // solve, 2n + 1). A line-search trial needs its residual only.
     assemble_bulk(!trial);
+    // The round-off scale || |K| |x| || of this iterate's bulk Jacobian at
+    // this iterate (before: of the last solve's matrix and state, which
+    // after a step cut were those of the failed attempt: a run-away
+    // iterate's scale then accepted the restarted step's first iterate).
+    if (!trial)
+      matrix_roundoff =
+        Solver::absolute_product_norm(system.matrix,
+                                      system.state,
+                                      first_update ? *first_update :
+                                                     system.constraints_update,
+                                      system.mpi_communicator,
+                                      position_scale);
     assemble_contact(false, system.constraints_update, !trial);
     Solver::Evaluation e;
     e.block = block_residuals();
@@ -138,10 +150,8 @@ namespace Signorini
     // relative tolerance) would depend on the Normal coefficient.
     e.force = std::max(system.internal_force.l2_norm(),
                        system.external_force.l2_norm());
-    // Round-off scales: || |K| |x| || of the last Jacobian at the state it
-    // was assembled at (the scale changes little from one iterate to the
-    // next, and at the first iterate of a pairing the matrix is not
-    // assembled yet), and rho_n |x| of the gaps, which are differences of
+    // Round-off scales: || |K| |x| || of the bulk Jacobian at this iterate
+    // (above), and rho_n |x| of the gaps, which are differences of
     // positions (ContactProblem::roundoff_scale()).
     e.bulk_roundoff = matrix_roundoff;
     if (contact.active())
@@ -285,13 +295,6 @@ namespace Signorini
     bulk_jacobian_ready = false; // the matrix now holds the contact terms
     if (contact.active())
       contact.clear_releases();
-    matrix_roundoff =
-      Solver::absolute_product_norm(system.matrix,
-                                    system.state,
-                                    first_update ? *first_update :
-                                                   system.constraints_update,
-                                    system.mpi_communicator,
-                                    position_scale);
     Solver::LinearisedStep step;
     step.held_motions = hold_free_motions(iteration);
     TimerOutput::Scope t(timer, "linear solve");
@@ -494,17 +497,25 @@ namespace Signorini
       contact.active() && contact.contact_surfaces().n_friction() > 0 &&
       contact_statistics.n_contact > 0;
     if (!friction_may_hold)
-      throw RunError(
-        "load step " + std::to_string(report.position.step) +
-        ", Newton iterate " + std::to_string(iteration) + ": nothing holds " +
-        list +
-        " (no Dirichlet condition constrains it and no closed contact point "
-        "resists it), so the linear system is singular. Support the body "
-        "along that motion (a Dirichlet condition on that component, on one "
-        "node if the body must stay free otherwise: 'Boundary "
-        "conditions/Dirichlet k/At point'), drive it by a prescribed "
-        "displacement, or let it start in contact ('Contact/Initial status "
-        "= closed').");
+      {
+        const std::string what =
+          "nothing holds " + list +
+          " (no Dirichlet condition constrains it and no closed contact "
+          "point resists it), so the linear system is singular";
+        // At a later iterate the contact held the body at the first: the
+        // iteration has opened it (an excursion of Newton, e.g. through a
+        // plastic zone), and a smaller step may not; the step is cut.
+        if (iteration > 0)
+          throw LinearSolveError(what);
+        throw RunError(
+          "load step " + std::to_string(report.position.step) +
+          ", Newton iterate 0: " + what +
+          ". Support the body along that motion (a Dirichlet condition on "
+          "that component, on one node if the body must stay free "
+          "otherwise: 'Boundary conditions/Dirichlet k/At point'), drive it "
+          "by a prescribed displacement, or let it start in contact "
+          "('Contact/Initial status = closed').");
+      }
     rigid_modes.hold(system.matrix, system.dof_handler.n_dofs(), free);
     if (parameters.output.verbosity != Verbosity::quiet)
       pcout << "    held for this solve (friction without threshold or "

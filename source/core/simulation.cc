@@ -237,7 +237,9 @@ namespace Signorini
 
 
   unsigned int
-  run_from_file(const std::string &filename, const MPI_Comm mpi_communicator)
+  run_from_file(const std::string &filename,
+                const MPI_Comm     mpi_communicator,
+                const bool         check_only)
   {
     ParameterHandler prm;
     const Parameters parameters = read_parameters(filename, prm);
@@ -250,8 +252,13 @@ namespace Signorini
     const auto         run           = [&](auto &&simulation) {
       try
         {
-          simulation.run();
-          failed_checks = simulation.failed_checks();
+          if (check_only)
+            simulation.check_input();
+          else
+            {
+              simulation.run();
+              failed_checks = simulation.failed_checks();
+            }
         }
       catch (...)
         {

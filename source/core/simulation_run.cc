@@ -44,6 +44,16 @@ namespace Signorini
   }
 
 
+  template <int dim>
+  void
+  Simulation<dim>::check_input()
+  {
+    make_mesh();
+    setup_system();
+    print_setup();
+  }
+
+
   // "Load step k of n, t = ...", with the time of the last step, the
   // elapsed and the estimated remaining time (from the share of the load
   // path done) on a terminal only: log files and test outputs stay

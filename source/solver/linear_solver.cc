@@ -198,6 +198,28 @@ namespace Signorini
         block.compress(VectorOperation::insert);
       }
 
+      // f(row, column, value) for every stored entry of the locally owned
+      // rows of @p M (global indices).
+      template <class F>
+      void
+      for_each_entry(const TrilinosWrappers::SparseMatrix &M, const F &f)
+      {
+        const Epetra_CrsMatrix &E = M.trilinos_matrix();
+        for (int lr = 0; lr < E.NumMyRows(); ++lr)
+          {
+            int     n;
+            double *v;
+            int    *c;
+            E.ExtractMyRowView(lr, n, v, c);
+            const auto r =
+              static_cast<types::global_dof_index>(E.RowMap().GID64(lr));
+            for (int k = 0; k < n; ++k)
+              f(r,
+                static_cast<types::global_dof_index>(E.ColMap().GID64(c[k])),
+                v[k]);
+          }
+      }
+
       // P^-1 of the block lower-triangular preconditioner [A 0; C S].
       class BlockPreconditioner
       {
@@ -285,21 +307,23 @@ namespace Signorini
       inverse_diagonal.compress(VectorOperation::insert);
       TrilinosWrappers::SparseMatrix CB;
       C.mmult(CB, Bt, inverse_diagonal);
+      // The entries through Epetra's local row views: deal.II's row
+      // iterators take the owned rows for one contiguous range, and the
+      // multipliers a rank owns are two (its lambda and its Lambda).
       TrilinosWrappers::SparsityPattern sp(owned_m, owned_m, comm);
-      for (const auto *P : {&D, &CB})
-        for (const auto r : owned_m)
-          for (auto it = P->begin(r); it != P->end(r); ++it)
-            sp.add(r, it->column());
+      for_each_entry(D,
+                     [&](const auto r, const auto c, double) { sp.add(r, c); });
+      for_each_entry(CB,
+                     [&](const auto r, const auto c, double) { sp.add(r, c); });
       sp.compress();
       TrilinosWrappers::SparseMatrix S;
       S.reinit(sp);
-      for (const auto r : owned_m)
-        {
-          for (auto it = D.begin(r); it != D.end(r); ++it)
-            S.add(r, it->column(), it->value());
-          for (auto it = CB.begin(r); it != CB.end(r); ++it)
-            S.add(r, it->column(), -it->value());
-        }
+      for_each_entry(D, [&](const auto r, const auto c, const double v) {
+        S.add(r, c, v);
+      });
+      for_each_entry(CB, [&](const auto r, const auto c, const double v) {
+        S.add(r, c, -v);
+      });
       S.compress(VectorOperation::add);
 
       SolverControl                                  schur_control(1, 0);

@@ -282,8 +282,15 @@ namespace Signorini
       residual_before = residual;
       const bool exact_step =
         step_exact && statuses_settled && evaluation.linear_at_fixed_statuses;
-      const bool at_floor =
-        residual <= verdict.floor && (stagnated || exact_step);
+      // A floor above 1e-6 of the force level is not round-off of an
+      // answer: the iterate has run away (its round-off grows with it; a
+      // perfectly plastic body pushed off its contact reached |u| = 1e13
+      // and was accepted at a floor of 1.7 times the force level).
+      constexpr double largest_floor = 1e-6;
+      const bool       floor_of_an_answer =
+        verdict.floor <= largest_floor * force_level;
+      const bool at_floor = residual <= verdict.floor && floor_of_an_answer &&
+                            (stagnated || exact_step);
       verdict.at_exact_floor = at_floor && exact_step;
       // A force level near zero (a body moving rigidly without touching
       // anything): the displacement rows at the round-off of the internal
@@ -291,6 +298,13 @@ namespace Signorini
       const bool below_tolerance =
         (small(block[0]) || block[0] <= bulk_floor) && small(block[1]) &&
         small(block[2]);
+      if (residual <= verdict.floor && !floor_of_an_answer &&
+          (stagnated || exact_step) && !below_tolerance && !parameters.quiet)
+        out << "    round-off floor " << std::scientific << std::setprecision(1)
+            << verdict.floor / force_level
+            << " of the force level: the iterate has run away "
+               "(not accepted)"
+            << std::defaultfloat << std::endl;
       const bool residual_small = below_tolerance || at_floor;
       if (below_tolerance && !small(block[0]) && !parameters.quiet)
         out << "    displacement residual at the round-off of the internal "

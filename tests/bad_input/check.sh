@@ -7,6 +7,8 @@
 #  - shows no sign of a crash (segfault, uncaught exception, abort,
 #    deal.II stack trace, MPI_ABORT),
 #  - and prints none of the texts of its "# absent:" lines.
+# A "# options:" line gives command-line options put before the file
+# (e.g. --check).
 # A case that is a directory (a directory given as the parameter file) keeps
 # these lines in the file 'expect' inside it.
 set -u
@@ -18,12 +20,13 @@ if [ -d "$prm" ]; then meta="$prm/expect"; fi
 expect="$(sed -n 's/^# expect: //p' "$meta")"
 want_rc="$(sed -n 's/^# exit: //p' "$meta")"
 want_rc="${want_rc:-1}"
+read -r -a options <<< "$(sed -n 's/^# options: //p' "$meta")"
 if [ -z "$expect" ]; then echo "FAIL: no '# expect:' line in $meta"; exit 1; fi
 dir="$(mktemp -d)"; cd "$dir"
 if [ "$np" -gt 1 ]; then
-  "$mpiexec" -n "$np" --allow-run-as-root "$exe" "$prm" > out.txt 2>&1; rc=$?
+  "$mpiexec" -n "$np" --allow-run-as-root "$exe" "${options[@]}" "$prm" > out.txt 2>&1; rc=$?
 else
-  "$exe" "$prm" > out.txt 2>&1; rc=$?
+  "$exe" "${options[@]}" "$prm" > out.txt 2>&1; rc=$?
 fi
 cat out.txt
 count="$(grep -cF -- "$expect" out.txt)"

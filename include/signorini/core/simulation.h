@@ -59,6 +59,12 @@ namespace Signorini
     void
     run();
 
+    /** The set-up of run() alone: the mesh, the unknowns and every check
+     * of the input against them, printed as a run prints them; no load
+     * step is solved and nothing is written ('signorini --check'). */
+    void
+    check_input();
+
     /** The checks of the postprocessors at the last written step. */
     const std::vector<Postprocess::CheckResult> &
     last_step_checks() const
@@ -184,10 +190,13 @@ namespace Signorini
     unsigned int maximum_level = 0; // adaptivity: finest level (0: not set)
   };
 
-  /** Reads @p filename, dispatches on Dimension and runs; used by main().
-   * Returns the number of reference checks that failed. */
+  /** Reads @p filename, dispatches on Dimension and runs (@p check_only:
+   * Simulation::check_input() instead); used by main(). Returns the
+   * number of reference checks that failed. */
   unsigned int
-  run_from_file(const std::string &filename, const MPI_Comm mpi_communicator);
+  run_from_file(const std::string &filename,
+                const MPI_Comm     mpi_communicator,
+                const bool         check_only = false);
 } // namespace Signorini
 
 #endif
