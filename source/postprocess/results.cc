@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <iomanip>
 #include <limits>
-#include <map>
 #include <sstream>
 
 namespace Signorini
@@ -179,8 +178,11 @@ namespace Signorini
       std::vector<std::array<Tensor<1, dim>, 3>> sums(n_parts);
       std::vector<Tensor<1, dim>>                centre(n_parts);
       std::vector<double>                        n_cells(n_parts, 0);
-      std::map<types::global_dof_index, std::pair<unsigned int, unsigned int>>
-                                           of_dof; // body, component
+      // Body and component of each locally owned displacement DoF (by its
+      // index within the owned set).
+      constexpr unsigned int none = numbers::invalid_unsigned_int;
+      std::vector<std::pair<unsigned int, unsigned int>> of_dof(
+        system.locally_owned.n_elements(), {none, none});
       std::vector<types::global_dof_index> dofs(system.fe.n_dofs_per_cell());
       for (const auto &cell : system.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -194,17 +196,21 @@ namespace Signorini
                 const unsigned int c =
                   system.fe.system_to_component_index(i).first;
                 if (c < dim && system.locally_owned.is_element(dofs[i]))
-                  of_dof.emplace(dofs[i], std::make_pair(b, c));
+                  of_dof[system.locally_owned.index_within_set(dofs[i])] = {b,
+                                                                            c};
               }
           }
-      for (const auto &[i, body_component] : of_dof)
+      unsigned int k = 0; // the owned set is iterated in index order
+      for (const auto i : system.locally_owned)
         {
-          const auto [b, c] = body_component;
+          const auto [b, c] = of_dof[k++];
+          if (b == none)
+            continue;
           sums[b][1][c] += system.external_force[i];
           sums[b][2][c] += system.contact_force[i];
         }
       for (const auto &[dof, f] : supports.node_forces)
-        sums[of_dof.at(dof).first][0] += f;
+        sums[of_dof[system.locally_owned.index_within_set(dof)].first][0] += f;
       for (unsigned int b = 0; b < n_parts; ++b)
         {
           for (auto &t : sums[b])

@@ -58,7 +58,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from prm_edit import absolute_paths, edit_prm, remove_section  # noqa: E402
 
 
-def run(exe, mpiexec, prm_lines, np, directory, name):
+def run_scene(exe, mpiexec, prm_lines, np, directory, name):
+    """Writes @prm_lines (results into @directory/results) and runs them on
+    @np ranks; returns the exit code, the log's last lines and the
+    statistics.csv rows (None unless the run exited with 0)."""
     os.makedirs(directory, exist_ok=True)
     out = os.path.join(directory, "results")
     prm = os.path.join(directory, name + ".prm")
@@ -68,12 +71,20 @@ def run(exe, mpiexec, prm_lines, np, directory, name):
     log = os.path.join(directory, name + ".log")
     with open(log, "w") as f:
         code = subprocess.call(command, stdout=f, stderr=subprocess.STDOUT, cwd=directory)
+    tail = "".join(open(log).readlines()[-8:])
+    if code != 0:
+        return code, tail, None
+    with open(os.path.join(out, "statistics.csv")) as f:
+        return code, tail, list(csv.DictReader(f))
+
+
+def run(exe, mpiexec, prm_lines, np, directory, name):
+    code, tail, rows = run_scene(exe, mpiexec, prm_lines, np, directory, name)
     if code != 0:
         print("FAIL: the %s run (%d rank(s)) exited with code %d; its last lines:" % (name, np, code))
-        print("".join(open(log).readlines()[-8:]))
+        print(tail)
         sys.exit(1)
-    with open(os.path.join(out, "statistics.csv")) as f:
-        return list(csv.DictReader(f))
+    return rows
 
 
 KIND = [

@@ -46,7 +46,6 @@ script exits 1 if a row breaks its invariant or a run fails.
 """
 import argparse
 import itertools
-import math
 import os
 import random
 import re
@@ -56,7 +55,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from invariant import compare, rotation, to_base_frame  # noqa: E402
+from invariant import compare, rotation, run_scene, to_base_frame  # noqa: E402
 from prm_edit import edit_prm  # noqa: E402
 
 TOLERANCE = 2e-6
@@ -309,19 +308,6 @@ def prm_lines(row, scale=1.0, turned=False):
     return edit_prm([], Scene(row, scale, turned).build())
 
 
-def run(exe, mpiexec, lines, np, directory):
-    os.makedirs(directory, exist_ok=True)
-    out = os.path.join(directory, "results")
-    prm = os.path.join(directory, "scene.prm")
-    with open(prm, "w") as f:
-        f.write("\n".join(edit_prm(lines, ["Output/Directory=" + out])) + "\n")
-    command = [exe, prm] if np == 1 else [mpiexec, "-n", str(np), "--allow-run-as-root", exe, prm]
-    p = subprocess.run(command, capture_output=True, text=True, cwd=directory)
-    with open(os.path.join(directory, "log"), "w") as f:
-        f.write(p.stdout + p.stderr)
-    return p.returncode, p.stdout + p.stderr, out
-
-
 class Prober:
     """Asks the program which rows it takes ('signorini --check' on many
     files in one start: each input read and checked against its mesh and
@@ -496,17 +482,14 @@ def check_row(exe, mpiexec, row, directory):
         other, other_np = prm_lines(row, turned=True), np
     else:
         other, other_np = base_lines, 3 - np
-    code, text, out = run(exe, mpiexec, base_lines, np, os.path.join(directory, "base"))
+    code, text, base = run_scene(exe, mpiexec, base_lines, np, os.path.join(directory, "base"), "base")
     if code != 0:
-        print("  FAIL: the scene exits with %d:\n%s" % (code, "".join(text.splitlines(True)[-6:])))
+        print("  FAIL: the scene exits with %d:\n%s" % (code, text))
         return False
-    code2, text2, out2 = run(exe, mpiexec, other, other_np, os.path.join(directory, "variant"))
-    if code2 != 0:
-        print("  FAIL: its %s run exits with %d:\n%s" % (inv, code2, "".join(text2.splitlines(True)[-6:])))
+    code, text, variant = run_scene(exe, mpiexec, other, other_np, os.path.join(directory, "variant"), "variant")
+    if code != 0:
+        print("  FAIL: its %s run exits with %d:\n%s" % (inv, code, text))
         return False
-    import csv
-    base = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
-    variant = list(csv.DictReader(open(os.path.join(out2, "statistics.csv"))))
     skip = []
     if inv == "units":
         variant = to_base_frame(variant, dim, None, None, "mm", row["model"] == "axisymmetric")
