@@ -161,9 +161,10 @@ namespace Signorini
                       "Status of the contact points at the first Newton "
                       "iteration of the run: open, closed where penetrating "
                       "or touching (g >= 0, to 1e-8 of the face size), or "
-                      "all closed (holds bodies that only "
-                      "contact supports; open points are released by "
-                      "Newton).");
+                      "all closed (for a body that its touching points "
+                      "cannot hold: the first iterate pulls every paired "
+                      "point onto the master, which at finite strain can "
+                      "invert cells; open points are released by Newton).");
     prm.declare_entry("Projection tolerance",
                       "0.05",
                       Patterns::Double(0),
