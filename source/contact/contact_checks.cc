@@ -1,6 +1,7 @@
 // Reference checks of a converged contact state that the residual does not
 // restate: action = reaction between the displacement rows and the
-// multipliers, and the direction of friction (ContactProblem::law_checks()).
+// multipliers, and the direction of friction against the slip of the
+// bodies (ContactProblem::law_checks()).
 #include <deal.II/base/mpi.h>
 
 #include <signorini/contact/contact_problem.h>
@@ -123,8 +124,10 @@ namespace Signorini
     template <int dim>
     std::vector<typename ContactProblem<dim>::LawCheck>
     ContactProblem<dim>::law_checks(
-      const TrilinosWrappers::MPI::Vector &state) const
+      const TrilinosWrappers::MPI::Vector &state,
+      const std::vector<Tensor<1, dim>>   &slips) const
     {
+      const auto &points = pairing.points();
       using internal::add_entry;
       const unsigned int    n_pairs = parameters.contact.pairs.size();
       std::vector<LawCheck> result(n_pairs);
@@ -140,25 +143,36 @@ namespace Signorini
 
       // The largest slip and friction force of each pair (the scale below
       // which a slipping point's direction is round-off).
-      SlipScales scales{std::vector<double>(n_pairs, 0.),
+      // The slip is the bodies' (@p slips), never the one the law was
+      // given: a slip of the law with the wrong sign would otherwise be
+      // confirmed by the law it drove.
+      SlipScales          scales{std::vector<double>(n_pairs, 0.),
                         std::vector<double>(n_pairs, 0.)};
-      for (const auto &point : pairing.points())
-        if (point.paired)
+      std::vector<double> difference(n_pairs, 0.);
+      for (unsigned int i = 0; i < points.size(); ++i)
+        if (points[i].paired && i < slips.size())
           {
-            const unsigned int p = surfaces.slave_faces()[point.face].pair;
-            scales.v_max[p] =
-              std::max(scales.v_max[p], slip_vector(point).norm());
+            const auto        &point = points[i];
+            const unsigned int p     = surfaces.slave_faces()[point.face].pair;
+            scales.v_max[p] = std::max(scales.v_max[p], slips[i].norm());
             scales.f_max[p] =
               std::max(scales.f_max[p], tangential_force(point).norm());
+            if (point.status != PointStatus::free)
+              difference[p] =
+                std::max(difference[p], (slip_vector(point) - slips[i]).norm());
           }
       for (unsigned int p = 0; p < n_pairs; ++p)
         {
           scales.v_max[p] = Utilities::MPI::max(scales.v_max[p], comm);
           scales.f_max[p] = Utilities::MPI::max(scales.f_max[p], comm);
+          difference[p]   = Utilities::MPI::max(difference[p], comm);
+          if (scales.v_max[p] > 0)
+            result[p].max_slip_difference = difference[p] / scales.v_max[p];
         }
 
-      for (const auto &point : pairing.points())
+      for (unsigned int i = 0; i < points.size(); ++i)
         {
+          const auto &point = points[i];
           if (!point.paired)
             continue;
           const auto        &face = surfaces.slave_faces()[point.face];
@@ -167,10 +181,10 @@ namespace Signorini
           auto              &r    = result[p];
           r.force_rows += point.weight * point.force;
           r.force_multipliers += point.weight * multiplier_force(point, state);
-          if (mu == 0)
+          if (mu == 0 || i >= slips.size())
             continue;
           const Tensor<1, dim> f_t = tangential_force(point);
-          const Tensor<1, dim> v   = slip_vector(point);
+          const Tensor<1, dim> v   = slips[i];
           if (node_statuses.friction_by_node(p))
             for (unsigned int l = 0; l < face.lambda_dofs.size(); ++l)
               for (unsigned int c = 0; c < dim; ++c)
@@ -254,8 +268,10 @@ namespace Signorini
 
 
     template std::vector<typename ContactProblem<2>::LawCheck>
-    ContactProblem<2>::law_checks(const TrilinosWrappers::MPI::Vector &) const;
+    ContactProblem<2>::law_checks(const TrilinosWrappers::MPI::Vector &,
+                                  const std::vector<Tensor<1, 2>> &) const;
     template std::vector<typename ContactProblem<3>::LawCheck>
-    ContactProblem<3>::law_checks(const TrilinosWrappers::MPI::Vector &) const;
+    ContactProblem<3>::law_checks(const TrilinosWrappers::MPI::Vector &,
+                                  const std::vector<Tensor<1, 3>> &) const;
   } // namespace Contact
 } // namespace Signorini

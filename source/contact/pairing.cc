@@ -191,6 +191,8 @@ namespace Signorini
                        const double                         t0)
     {
       const auto &pairs = parameters.contact.pairs;
+      time_paired       = time;
+      start_paired      = t0;
 
       // Rigid obstacles at time t, and where they were at the step start.
       motion_at_start.resize(pairs.size());

@@ -35,8 +35,7 @@ namespace Signorini
       {
         auto results = solution->evaluate(data);
         if (data.contact)
-          for (auto &r : contact->evaluate(
-                 data.time, *data.contact, data.state, data.force_level))
+          for (auto &r : contact->evaluate(data))
             results.push_back(std::move(r));
         for (auto &r : contact->point_values(data.time, data.displacement_at))
           results.push_back(std::move(r));

@@ -328,7 +328,16 @@ namespace Signorini
     void
     Results<dim>::run_postprocessors(const unsigned int step, const double time)
     {
-      TimerOutput::Scope  t(timer, "output");
+      TimerOutput::Scope            t(timer, "output");
+      TrilinosWrappers::MPI::Vector owned(system.locally_owned,
+                                          system.mpi_communicator);
+      for (const auto i : system.locally_owned)
+        owned[i] = system.state_step_start[i];
+      owned.compress(VectorOperation::insert);
+      TrilinosWrappers::MPI::Vector start(system.locally_owned,
+                                          system.locally_relevant,
+                                          system.mpi_communicator);
+      start = owned;
       const StepData<dim> data{step,
                                time,
                                system.mpi_communicator,
@@ -336,6 +345,7 @@ namespace Signorini
                                system.mapping,
                                system.dof_handler,
                                system.solution,
+                               start,
                                materials,
                                system.history,
                                contact.active() ? &contact : nullptr,

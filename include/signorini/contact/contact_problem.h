@@ -142,6 +142,13 @@ namespace Signorini
             const IndexSet                  &locally_owned_u,
             ConditionalOStream              &pcout);
 
+      /** The contact points and their pairing (pairing.h). */
+      const Pairing<dim> &
+      contact_pairing() const
+      {
+        return pairing;
+      }
+
       /** The contact surfaces: faces, slave nodes, multiplier numbering
        * (surfaces.h). */
       const Surfaces<dim> &
@@ -365,8 +372,11 @@ namespace Signorini
        * - Coulomb's law where the contact slips: at every slipping point
        *   (statuses per point) or slipping multiplier node (statuses per
        *   node), the tangential force that the slave receives opposes the
-       *   slip increment v (theory.md F3.2: h / |h| along v at
-       *   convergence) and |f_t| = mu |f_n|; for a node, its force
+       *   slip increment v of the bodies (@p slips below, measured from
+       *   the displacement field, not the slip the law was given;
+       *   theory.md F3.2: h / |h| along v at convergence) and
+       *   |f_t| = mu |f_n|; and the law's slip is the bodies' (the
+       *   largest difference, max_slip_difference); for a node, its force
        *   F_l = sum_k w psi_l f, split by its mean normal, against its
        *   weighted slip sum_k w psi~_l v (exact on flat masters; on curved
        *   ones the normal turns under a node).
@@ -386,10 +396,19 @@ namespace Signorini
         // relative deviation from |f_t| = mu |f_n|.
         double min_cosine    = 1;
         double max_deviation = 0;
-        bool   by_node       = false; // statuses per node
+        // The largest difference between the slip the law was given and
+        // @p slips over the closed points, relative to the largest of
+        // @p slips (0 without slip).
+        double max_slip_difference = 0;
+        bool   by_node             = false; // statuses per node
       };
+      /** @p slips: the slip of every point of the pairing (in its order)
+       * as the bodies moved, from the displacement field and the
+       * obstacles' motion (Postprocess::field_slips()): the friction force
+       * is checked against it, not against the slip the law was given. */
       std::vector<LawCheck>
-      law_checks(const TrilinosWrappers::MPI::Vector &state) const;
+      law_checks(const TrilinosWrappers::MPI::Vector &state,
+                 const std::vector<Tensor<1, dim>>   &slips) const;
 
 
     private:

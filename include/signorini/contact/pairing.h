@@ -64,6 +64,21 @@ namespace Signorini
            const double                         time,
            const double                         step_start_time);
 
+      /** The load time and the step start of the last pair() call. */
+      std::array<double, 2>
+      paired_times() const
+      {
+        return {{time_paired, start_paired}};
+      }
+
+      /** The prescribed rigid motion at time @p t of the obstacle of pair
+       * @p p (a rigid master). */
+      Obstacles::RigidMotion<dim>
+      obstacle_motion(const unsigned int p, const double t) const
+      {
+        return motions[p]->at(t);
+      }
+
       /** A new load step: the pairing 2-cycles start again. */
       void
       start_step()
@@ -227,6 +242,7 @@ namespace Signorini
       bool                            mortar         = false;
       unsigned int                    segment_order  = 0;
       unsigned int                    n_newly_pinned = 0, pairings_in_step = 0;
+      double                          time_paired = 0, start_paired = 0;
       unsigned int n_deep = 0; // points paired by pair_deep(), last pairing
       Points       point_store;
     };

@@ -45,18 +45,15 @@ namespace Signorini
       explicit ContactChecks(const Parameters &parameters);
 
       /**
-       * The checks of the step ending at @p time. @p state is the
-       * converged ghosted system vector; @p force_level the force level of
-       * the step (the largest internal or external force norm, the scale of
-       * a contact force that is zero up to round-off). Checks that keep
+       * The checks of the written step @p data (with its contact problem:
+       * the converged system vector, the force level of the step, the
+       * largest internal or external force norm, which is the scale of a
+       * contact force that is zero up to round-off). Checks that keep
        * history (stick zone after a reversal, force variation) record the
        * step.
        */
       std::vector<CheckResult>
-      evaluate(const double                         time,
-               const Contact::ContactProblem<dim>  &contact,
-               const TrilinosWrappers::MPI::Vector &state,
-               const double                         force_level);
+      evaluate(const StepData<dim> &data);
 
       /** The 'Point values' checks of the step ending at @p time (with or
        * without contact; from 'Point values from time' on). */
@@ -98,10 +95,8 @@ namespace Signorini
                        std::vector<CheckResult>           &results);
 
       void
-      check_laws(const Contact::ContactProblem<dim>  &contact,
-                 const TrilinosWrappers::MPI::Vector &state,
-                 const double                         force_level,
-                 std::vector<CheckResult>            &results) const;
+      check_laws(const StepData<dim>      &data,
+                 std::vector<CheckResult> &results) const;
 
       bool
       is_last_step(const double time) const;

@@ -131,6 +131,9 @@ namespace Signorini
       const Mapping<dim>                  &mapping;
       const DoFHandler<dim>               &dof_handler; // displacement
       const TrilinosWrappers::MPI::Vector &displacement;
+      // The displacement at the start of the (sub)step, from which the
+      // contact law measures slip increments.
+      const TrilinosWrappers::MPI::Vector &displacement_step_start;
       const std::map<types::material_id,
                      std::unique_ptr<Material::Interface<dim>>> &materials;
       // The materials' committed history at the bulk quadrature points.
