@@ -535,8 +535,8 @@ namespace Signorini
             }
           // The slip the law was given must be the bodies' slip: 1e-2 of
           // the largest (measured at most 3.5e-4: projections just outside
-          // a master face, taken at its edge here; else about 1e-6, the
-          // evaluation's step into the cells).
+          // a master face, taken at its edge here; 2.2e-6 or below in the
+          // scenes without such points).
           constexpr double slip_bar = 1e-2;
           const bool       pass     = c.n_opposed == c.n_slipping &&
                             c.max_deviation <= ref.slip_law_tolerance &&
