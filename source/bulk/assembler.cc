@@ -247,7 +247,8 @@ namespace Signorini
                              TrilinosWrappers::MPI::Vector       &rhs,
                              TrilinosWrappers::MPI::Vector &internal_force,
                              TrilinosWrappers::MPI::Vector &external_force,
-                             const LinearSystemRhs         *linear_system) const
+                             const LinearSystemRhs         *linear_system,
+                             const PinRows                 *pin_rows) const
     {
       const auto     fe_face_values = neumann_face_values();
       CellKinematics k(mapping, fe, cell_quadrature, parameters.axisymmetric);
@@ -312,8 +313,53 @@ namespace Signorini
                 cell_matrix, cell_rhs, dofs, *matrix, rhs);
             else
               constraints.distribute_local_to_global(cell_rhs, dofs, rhs);
+            if (with_matrix && pin_rows)
+              add_pin_rows(cell_matrix,
+                           dofs,
+                           constraints,
+                           linear_system ? &linear_system->constraints :
+                                           nullptr,
+                           *pin_rows);
             internal_force.add(dofs, cell_fint);
             external_force.add(dofs, cell_fext);
+          }
+    }
+
+
+    template <int dim>
+    void
+    Assembler<dim>::add_pin_rows(
+      const FullMatrix<double>                   &cell_matrix,
+      const std::vector<types::global_dof_index> &dofs,
+      const AffineConstraints<double>            &constraints,
+      const AffineConstraints<double>            *first_update,
+      const PinRows                              &pin_rows) const
+    {
+      // Rows kept as they are, columns condensed.
+      static const AffineConstraints<double> rows_as_they_are = [] {
+        AffineConstraints<double> none;
+        none.close();
+        return none;
+      }();
+      const unsigned int n = dofs.size();
+      FullMatrix<double> row(1, n);
+      for (unsigned int i = 0; i < n; ++i)
+        if (pin_rows.dofs.count(dofs[i]) > 0)
+          {
+            for (unsigned int j = 0; j < n; ++j)
+              row(0, j) = cell_matrix(i, j);
+            rows_as_they_are.distribute_local_to_global(
+              row, {dofs[i]}, constraints, dofs, pin_rows.matrix);
+            if (first_update)
+              {
+                double shift = 0;
+                for (unsigned int j = 0; j < n; ++j)
+                  if (first_update->is_inhomogeneously_constrained(dofs[j]))
+                    shift += cell_matrix(i, j) *
+                             first_update->get_inhomogeneity(dofs[j]);
+                const TrilinosWrappers::MPI::Vector::size_type index = dofs[i];
+                pin_rows.shift.add(1, &index, &shift);
+              }
           }
     }
 

@@ -298,6 +298,7 @@ namespace Signorini
       dirichlet_dofs.assign(parameters.dirichlet.size(), {});
       held_nodes.clear();
       held_index.clear();
+      point_line_dofs.clear();
       for (unsigned int k = 0; k < parameters.dirichlet.size(); ++k)
         {
           const auto &d = parameters.dirichlet[k];
@@ -404,6 +405,7 @@ namespace Signorini
                         dirichlet_dofs[k].emplace_back(dof, c);
                       if (added)
                         {
+                          point_line_dofs.insert(dof);
                           Node<dim> node;
                           for (unsigned int j = 0; j < dim; ++j)
                             node[j] = face->vertex_dof_index(v, j);

@@ -61,6 +61,7 @@ namespace Signorini
           if (matrix)
             history.set_solved_node_statuses(node_statuses.normal_statuses());
         }
+      find_sticking_pins();
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs;
       FullMatrix<double>                   K, K_group;
@@ -79,6 +80,11 @@ namespace Signorini
             K_group, F_group, group_dofs, *matrix, rhs);
         else
           constraints.distribute_local_to_global(F_group, group_dofs, rhs);
+        if (!stick_pins.empty())
+          for (unsigned int a = 0; a < group_dofs.size(); ++a)
+            if (stick_pins.count(group_dofs[a]) > 0)
+              add_pin_rows(
+                a, K_group, F_group, group_dofs, constraints, matrix, rhs);
         group_dofs.clear();
       };
 
@@ -238,6 +244,19 @@ namespace Signorini
         if (!same_held)
           s.held = Tensor<2, dim - 1>();
       }
+      // A point at a pinned node (theory.md F8, pins): its traction takes
+      // Lambda as it is (the stick branch), whatever the node's status,
+      // which the node's rows carry; so the pin's balance R_d has its
+      // derivative in Lambda at every iterate.
+      bool pinned = false;
+      for (unsigned int l = 0; l < e.n_l; ++l)
+        if (psi[l] > 1e-12 && face.pin[l] != numbers::invalid_dof_index)
+          pinned = true;
+      if (pinned)
+        {
+          s.freeze_stick          = true;
+          s.frozen_slip_direction = Tensor<1, dim>();
+        }
       e.r = e.by_node ? node_statuses.response(point, s) :
                         evaluate_contact_law(s, e.law);
 
@@ -264,6 +283,18 @@ namespace Signorini
           for (unsigned int k = 0; k < dim - 1; ++k)
             d.Lambda[k] = state[face.friction_dofs[l * (dim - 1) + k]];
         }
+      // The pinned point is labelled with its node's status.
+      if (pinned && e.r.friction_active)
+        for (unsigned int l = 0; l < e.node_data.size(); ++l)
+          if (psi[l] > 1e-12 && e.node_data[l].status &&
+              e.node_data[l].status->active && !e.node_data[l].status->stick)
+            {
+              const auto &H      = e.node_data[l].status->H;
+              e.r.status         = PointStatus::slip;
+              e.r.slip_direction = Tensor<1, dim>();
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                e.r.slip_direction += H[k] / H.norm() * s.tangents[k];
+            }
       if (point.paired && e.by_node)
         for (unsigned int l = 0; l < e.node_data.size(); ++l)
           if (e.node_data[l].status->active)

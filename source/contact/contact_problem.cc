@@ -96,10 +96,13 @@ namespace Signorini
     void
     ContactProblem<dim>::setup(const AffineConstraints<double> &u_constraints,
                                const IndexSet                  &owned_u,
-                               ConditionalOStream              &pcout)
+                               const std::set<types::global_dof_index> &pins,
+                               ConditionalOStream                      &pcout)
     {
-      const auto counts =
-        surfaces.setup(u_constraints, owned_u, node_statuses.pairs_by_node());
+      const auto counts = surfaces.setup(u_constraints,
+                                         owned_u,
+                                         node_statuses.pairs_by_node(),
+                                         pins);
       set_coefficients();
       pairing.setup();
       print_setup(pcout, counts);
@@ -150,11 +153,18 @@ namespace Signorini
               << " slave node(s) with a Dirichlet condition along the normal "
                  "excluded from contact"
               << std::endl;
-      if (counts.n_excluded_friction + counts.n_held_tangent > 0)
-        pcout << "  " << counts.n_excluded_friction + counts.n_held_tangent
+      const unsigned int n_pinned = surfaces.pins().size();
+      if (counts.n_excluded_friction + counts.n_held_tangent > n_pinned)
+        pcout << "  "
+              << counts.n_excluded_friction + counts.n_held_tangent - n_pinned
               << " slave node(s) with a tangent held by a Dirichlet "
                  "condition: friction decided per node, the support "
                  "carries it while they stick"
+              << std::endl;
+      if (n_pinned > 0)
+        pcout << "  " << n_pinned
+              << " slave node(s) pinned at a point ('At point') against a "
+                 "rigid master: the pin carries only what friction cannot"
               << std::endl;
       if (counts.n_hanging > 0)
         pcout << "  " << counts.n_hanging

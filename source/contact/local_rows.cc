@@ -91,6 +91,11 @@ namespace Signorini
           const double lw = e.node_data[l].row_lambda;
           const auto  &L  = e.node_data[l].Lambda;
           const auto  &Q  = face.held[l];
+          // A pinned node's rows along Q are its pin's support force
+          // (Assembler::add_pin_rows, PinRows), not s Q Lambda.
+          const double sQ = face.pin[l] == numbers::invalid_dof_index ?
+                              law.free_friction_scale :
+                              0.;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
               double r_f = 0;
@@ -99,7 +104,7 @@ namespace Signorini
               else if (nf.stick)
                 for (unsigned int j = 0; j < dim - 1; ++j)
                   r_f += ((k == j) - Q[k][j]) * -law.mu * lw * e.slip_t[j] +
-                         law.free_friction_scale * Q[k][j] * L[j];
+                         sQ * Q[k][j] * L[j];
               else
                 r_f = law.mu * lw / law.rho_t * (L[k] - nf.H[k] / nf.H.norm());
               if (!e.by_node)
@@ -229,11 +234,15 @@ namespace Signorini
           // have no lambda_l column.
           if (nf.stick)
             {
-              // Along a held tangent: s Q Lambda_l.
+              // Along a held tangent: s Q Lambda_l (a pin's: its support
+              // force, Assembler::add_pin_rows).
+              const double sQ = face.pin[l] == numbers::invalid_dof_index ?
+                                  law.free_friction_scale :
+                                  0.;
               for (unsigned int k = 0; k < dim - 1; ++k)
                 for (unsigned int j = 0; j < dim - 1; ++j)
                   {
-                    K(of + k, of + j) += wl * law.free_friction_scale * Q[k][j];
+                    K(of + k, of + j) += wl * sQ * Q[k][j];
                     if (point.paired)
                       for (unsigned int a = 0; a < n_u; ++a)
                         K(of + k, a) += wl * ((k == j) - Q[k][j]) *

@@ -21,6 +21,10 @@ namespace Signorini
     {
       TrilinosWrappers::MPI::Vector              G, D, P;
       std::vector<TrilinosWrappers::MPI::Vector> W;
+      // Pinned nodes (Surfaces::pins()): A_l = sum w psi_l n_c and
+      // B_l = sum w psi_l tau_c over their points, c the pinned component
+      // (empty without pins).
+      TrilinosWrappers::MPI::Vector A, B;
     };
 
 
@@ -125,6 +129,13 @@ namespace Signorini
       if (any_friction_node || any_held_node)
         for (unsigned int k = 0; k < dim - 1; ++k)
           W.push_back(surfaces.writable_multipliers());
+      const bool                    any_pin = !surfaces.pins().empty();
+      TrilinosWrappers::MPI::Vector A, B;
+      if (any_pin)
+        {
+          A = surfaces.writable_multipliers();
+          B = surfaces.writable_multipliers();
+        }
       for (const auto &point : pairing.points())
         {
           const auto &face = surfaces.slave_faces()[point.face];
@@ -146,11 +157,25 @@ namespace Signorini
               if (slip)
                 for (unsigned int k = 0; k < dim - 1; ++k)
                   add_entry(W[k], face.lambda_dofs[l], w * v[k]);
+              if (any_pin && point.paired &&
+                  face.pin[l] != numbers::invalid_dof_index)
+                {
+                  const unsigned int c =
+                    std::find(face.node_dofs.begin() + l * dim,
+                              face.node_dofs.begin() + (l + 1) * dim,
+                              face.pin[l]) -
+                    (face.node_dofs.begin() + l * dim);
+                  const double wd = point.weight * point.psi[l];
+                  add_entry(A, face.lambda_dofs[l], wd * point.normal[c]);
+                  add_entry(B, face.lambda_dofs[l], wd * point.tangents[0][c]);
+                }
             }
         }
       NodeSums sums{surfaces.ghosted_multipliers(),
                     surfaces.ghosted_multipliers(),
                     surfaces.ghosted_multipliers(),
+                    {},
+                    {},
                     {}};
       G.compress(VectorOperation::add);
       D.compress(VectorOperation::add);
@@ -163,6 +188,15 @@ namespace Signorini
           W[k].compress(VectorOperation::add);
           sums.W.push_back(surfaces.ghosted_multipliers());
           sums.W[k] = W[k];
+        }
+      if (any_pin)
+        {
+          A.compress(VectorOperation::add);
+          B.compress(VectorOperation::add);
+          sums.A = surfaces.ghosted_multipliers();
+          sums.B = surfaces.ghosted_multipliers();
+          sums.A = A;
+          sums.B = B;
         }
       return sums;
     }
@@ -278,6 +312,10 @@ namespace Signorini
                   for (unsigned int k = 0; k < dim - 1; ++k)
                     nf.H[k] = state[face.friction_dofs[l * (dim - 1) + k]] +
                               law.rho_t * sums.W[k][dof] / sums.D[dof];
+                  if (face.pin[l] != numbers::invalid_dof_index)
+                    nf.H[0] +=
+                      pin_demand(face.pin[l], state[dof], law.mu, sums) -
+                      state[face.friction_dofs[l * (dim - 1)]];
                   nf.stick = nf.H.norm() <= 1. + stick_tie;
                 }
               const bool  owned = surfaces.owned_multipliers().is_element(dof);
@@ -292,6 +330,30 @@ namespace Signorini
             }
         }
       return changed;
+    }
+
+
+    // A pinned node (theory.md F8, pins): the Lambda for which its pin
+    // carries nothing, from the pinned DoF's balance R_d = 0 with the
+    // bulk's force r_d = F_int - F_ext there and the node's contact force
+    // -lambda A - mu lambda B Lambda (the nodal rule: the node's own
+    // multipliers): Lambda* = (r_d - lambda A) / (mu lambda B). It takes
+    // the place of Lambda in H: the node sticks while friction can carry
+    // that, and slides (the pin carrying the rest) otherwise; sliding
+    // (|Lambda| = 1), it sticks again when the pin would pull.
+    template <int dim>
+    double
+    NodeStatuses<dim>::pin_demand(const types::global_dof_index pinned,
+                                  const double                  lambda,
+                                  const double                  mu,
+                                  const NodeSums               &sums) const
+    {
+      const auto  &pin = surfaces.pins().at(pinned);
+      const double B   = sums.B[pin.lambda];
+      const double r_d = pin_loads.at(pinned);
+      if (std::abs(B) <= 1e-12 * sums.D[pin.lambda])
+        return 0.;
+      return (r_d - lambda * sums.A[pin.lambda]) / (mu * lambda * B);
     }
 
 

@@ -85,14 +85,15 @@ namespace Signorini
 
     template <int dim>
     typename Surfaces<dim>::Counts
-    Surfaces<dim>::setup(const AffineConstraints<double> &u_constraints,
-                         const IndexSet                  &owned_u,
-                         const std::vector<bool>         &dual_pair)
+    Surfaces<dim>::setup(const AffineConstraints<double>         &u_constraints,
+                         const IndexSet                          &owned_u,
+                         const std::vector<bool>                 &dual_pair,
+                         const std::set<types::global_dof_index> &pins)
     {
       n_displacements = dof_handler.n_dofs();
       auto scan       = scan_boundary(u_constraints);
       sum_pair_scales(scan);
-      auto counts = number_multipliers(scan, owned_u, u_constraints);
+      auto counts = number_multipliers(scan, owned_u, u_constraints, pins);
       gather_master_faces(scan);
       counts.n_axis = close_axis_multipliers();
       finish_slave_faces(dual_pair);
@@ -308,9 +309,10 @@ namespace Signorini
     template <int dim>
     typename Surfaces<dim>::Counts
     Surfaces<dim>::number_multipliers(
-      const Scan                      &scan,
-      const IndexSet                  &owned_u,
-      const AffineConstraints<double> &u_constraints)
+      const Scan                              &scan,
+      const IndexSet                          &owned_u,
+      const AffineConstraints<double>         &u_constraints,
+      const std::set<types::global_dof_index> &pins)
     {
       // Owned slave nodes: exclusion (Dirichlet on a component along the
       // face normal -> no contact; along the face -> no friction) and
@@ -358,6 +360,7 @@ namespace Signorini
           const auto                 &node = scan.seen.at(owned_nodes[j]);
           NodeInfo                    info;
           std::vector<Tensor<1, dim>> tangential; // held along the face
+          std::vector<types::global_dof_index> tangential_dofs;
           for (unsigned int c = 0; c < dim; ++c)
             if (const auto *entries =
                   u_constraints.get_constraint_entries(node.dofs[c]))
@@ -391,7 +394,10 @@ namespace Signorini
                 if (along_normal)
                   info.exclude_contact = true;
                 else
-                  tangential.push_back(held);
+                  {
+                    tangential.push_back(held);
+                    tangential_dofs.push_back(node.dofs[c]);
+                  }
               }
           const bool friction = pairs[node.pair].friction > 0;
           info.lambda         = lambda_offset + j;
@@ -403,11 +409,19 @@ namespace Signorini
               info.exclude_friction = !a;
               if (a && a->norm() > 0)
                 info.friction_held.assign(a->begin_raw(), a->end_raw());
+              // In 2D, the tangent held by a pin at a point, against a rigid
+              // master: its rows there are the pin's support force
+              // (theory.md F8, pins).
+              if (dim == 2 && tangential_dofs.size() == 1 &&
+                  pins.count(tangential_dofs[0]) > 0 &&
+                  !pairs[node.pair].master_is_body())
+                info.pin = tangential_dofs[0];
             }
           info.pair = node.pair;
           own.emplace_back(owned_nodes[j], std::move(info));
         }
       node_info.clear();
+      pin_nodes.clear();
       Counts counts;
       for (const auto &from_rank : Utilities::MPI::all_gather(comm, own))
         for (const auto &[dof0, info] : from_rank)
@@ -416,6 +430,14 @@ namespace Signorini
             counts.n_excluded_friction += info.exclude_friction;
             counts.n_held_tangent += !info.friction_held.empty();
             counts.n_hanging += !info.hanging.empty();
+            if (info.pin != numbers::invalid_dof_index)
+              {
+                Pin pin{info.lambda, info.friction, {}};
+                pin.a[0] = 1;
+                for (unsigned int k = 0; k < info.friction_held.size(); ++k)
+                  pin.a[k] = info.friction_held[k];
+                pin_nodes.emplace(info.pin, pin);
+              }
             node_info.emplace(dof0, info);
           }
 
@@ -532,6 +554,7 @@ namespace Signorini
           face.excluded_contact.assign(n_l, false);
           face.excluded_friction.assign(n_l, false);
           face.held.clear();
+          face.pin.clear();
           for (unsigned int l = 0; l < n_l; ++l)
             {
               const auto &info = node_info.at(face.node_dofs[l * dim]);
@@ -558,6 +581,9 @@ namespace Signorini
                       Q[k][k] = 1;
                 }
               face.held.push_back(Q);
+              face.pin.push_back(face.excluded_friction[l] ?
+                                   numbers::invalid_dof_index :
+                                   info.pin);
             }
           face.dual.clear();
           if (dual_pair[face.pair] && !hanging)

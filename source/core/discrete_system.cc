@@ -84,7 +84,10 @@ namespace Signorini
     make_constraints(0., boundary_conditions, contact);
     if (contact.active())
       {
-        contact.setup(constraints_update, locally_owned, pcout);
+        contact.setup(constraints_update,
+                      locally_owned,
+                      boundary_conditions.point_lines(),
+                      pcout);
         const auto &surfaces = contact.contact_surfaces();
         owned_system         = IndexSet(surfaces.n_system());
         owned_system.add_indices(locally_owned);
@@ -131,11 +134,55 @@ namespace Signorini
         }
     if (contact.active())
       contact.add_sparsity(sp, constraints_update);
+    make_pin_rows(contact, sp);
     sp.compress();
     // The direct solver's analysis refers to the old matrix: dropped first.
     linear_solver.pattern_changed();
     matrix.reinit(sp);
     ++layout_count;
+  }
+
+
+  // The layout of pin_rows (the bulk rows of the pinned DoFs, columns
+  // condensed) and, in @p sp, the same columns in the held-tangent rows of
+  // their nodes, which take those rows while the node sticks.
+  template <int dim>
+  void
+  DiscreteSystem<dim>::make_pin_rows(
+    const Contact::ContactProblem<dim> &contact,
+    TrilinosWrappers::SparsityPattern  &sp)
+  {
+    pin_dofs.clear();
+    if (!contact.active() || contact.contact_surfaces().pins().empty())
+      return;
+    const auto &pins = contact.contact_surfaces().pins();
+    for (const auto &pin : pins)
+      pin_dofs.insert(pin.first);
+    TrilinosWrappers::SparsityPattern pin_sp(owned_system,
+                                             owned_system,
+                                             relevant_system,
+                                             mpi_communicator);
+    AffineConstraints<double>         rows_as_they_are;
+    rows_as_they_are.close();
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          for (const auto d : dofs)
+            if (pin_dofs.count(d) > 0)
+              rows_as_they_are.add_entries_local_to_global(
+                {d}, constraints_update, dofs, pin_sp, false);
+        }
+    pin_sp.compress();
+    for (const auto &[d, pin] : pins)
+      if (locally_owned.is_element(d))
+        for (auto it = pin_sp.begin(d); it != pin_sp.end(d); ++it)
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            if (pin.a[k] != 0)
+              sp.add(pin.friction + k, it->column());
+    pin_rows.reinit(pin_sp);
+    pin_shift.reinit(locally_owned, locally_relevant, mpi_communicator, true);
   }
 
 

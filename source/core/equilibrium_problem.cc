@@ -388,6 +388,16 @@ namespace Signorini
           typename Bulk::Assembler<dim>::LinearSystemRhs{*first_update,
                                                          system.bulk_rhs});
       }
+    // The bulk rows of pinned DoFs (theory.md F8, pins), kept with a
+    // kept linear Jacobian.
+    std::optional<typename Bulk::Assembler<dim>::PinRows> pin_rows;
+    if (assemble_jacobian && !system.pin_dofs.empty())
+      {
+        system.pin_rows  = 0;
+        system.pin_shift = 0;
+        pin_rows.emplace(typename Bulk::Assembler<dim>::PinRows{
+          system.pin_dofs, system.pin_rows, system.pin_shift});
+      }
     bulk.assemble(system.dof_handler,
                   system.solution,
                   system.history,
@@ -396,10 +406,17 @@ namespace Signorini
                   system.newton_rhs,
                   system.internal_force,
                   system.external_force,
-                  first_update_rhs ? &*first_update_rhs : nullptr);
+                  first_update_rhs ? &*first_update_rhs : nullptr,
+                  pin_rows ? &*pin_rows : nullptr);
+    if (pin_rows)
+      {
+        system.pin_rows.compress(VectorOperation::add);
+        system.pin_shift.compress(VectorOperation::add);
+      }
     system.newton_rhs.compress(VectorOperation::add);
     system.internal_force.compress(VectorOperation::add);
     system.external_force.compress(VectorOperation::add);
+    share_pin_loads();
     if (assemble_jacobian)
       {
         system.matrix.compress(VectorOperation::add);
@@ -434,6 +451,68 @@ namespace Signorini
   }
 
 
+  // The bulk's force F_int - F_ext at the pinned DoFs, for the statuses of
+  // their nodes (NodeStatuses::pin_demand), on every rank.
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::share_pin_loads()
+  {
+    if (system.pin_dofs.empty())
+      return;
+    std::vector<std::pair<types::global_dof_index, double>> owned;
+    for (const auto d : system.pin_dofs)
+      if (system.locally_owned.is_element(d))
+        owned.emplace_back(d,
+                           system.internal_force[d] - system.external_force[d]);
+    std::map<types::global_dof_index, double> loads;
+    for (const auto &from_rank :
+         Utilities::MPI::all_gather(system.mpi_communicator, owned))
+      loads.insert(from_rank.begin(), from_rank.end());
+    contact.set_pin_loads(std::move(loads));
+  }
+
+
+  // The bulk's part of the rows of each sticking pinned node this rank
+  // owns (the contact's are added by the contact assembly): along its held
+  // tangent a, a_k R_d = 0, the pin's support force, with R_d = F_int -
+  // F_ext at the pinned DoF d and dR_d its Jacobian row (pin_rows); the
+  // linear system of a first update has -K_dc g_c too (pin_shift).
+  template <int dim>
+  void
+  EquilibriumProblem<dim>::add_pin_rows(const bool with_matrix)
+  {
+    const auto &pins = contact.contact_surfaces().pins();
+    for (const auto d : contact.sticking_pins())
+      {
+        if (!system.locally_owned.is_element(d))
+          continue;
+        const auto &pin = pins.at(d);
+        double      rhs = system.external_force[d] - system.internal_force[d];
+        if (with_matrix && first_update)
+          rhs -= system.pin_shift[d];
+        std::vector<types::global_dof_index> columns;
+        std::vector<double>                  values;
+        if (with_matrix)
+          for (auto it = system.pin_rows.begin(d); it != system.pin_rows.end(d);
+               ++it)
+            {
+              columns.push_back(it->column());
+              values.push_back(it->value());
+            }
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          {
+            if (pin.a[k] == 0)
+              continue;
+            const types::global_dof_index l = pin.friction + k;
+            system.newton_rhs.add(std::vector<types::global_dof_index>{l},
+                                  std::vector<double>{pin.a[k] * rhs});
+            for (unsigned int j = 0; j < columns.size(); ++j)
+              system.matrix.add(l, columns[j], pin.a[k] * values[j]);
+          }
+      }
+  }
+
+
   template <int dim>
   void
   EquilibriumProblem<dim>::assemble_contact(
@@ -453,6 +532,7 @@ namespace Signorini
                            system.newton_rhs,
                            system.contact_force,
                            new_iterate);
+        add_pin_rows(with_matrix);
       }
     if (with_matrix)
       system.matrix.compress(VectorOperation::add);

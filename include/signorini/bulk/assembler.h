@@ -19,6 +19,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <set>
 #include <vector>
 
 /**
@@ -104,6 +105,18 @@ namespace Signorini
         TrilinosWrappers::MPI::Vector   &rhs;
       };
 
+      /** The Jacobian rows of pinned DoFs, kept for the rows of their
+       * contact nodes (theory.md F8, pins): the rows of the DoFs in
+       * @p dofs into @p matrix, columns condensed by the assembly's
+       * constraints; with a first update, sum_c K_dc g_c of its prescribed
+       * increments into @p shift (ghost-writable). */
+      struct PinRows
+      {
+        const std::set<types::global_dof_index> &dofs;
+        TrilinosWrappers::SparseMatrix          &matrix;
+        TrilinosWrappers::MPI::Vector           &shift;
+      };
+
       /**
        * Adds F_ext - F_int of @p solution (ghosted) into @p rhs and the
        * Jacobian into @p matrix (if not null), through @p constraints; adds
@@ -112,7 +125,8 @@ namespace Signorini
        * With @p linear_system, the Jacobian and F_ext - F_int once more go
        * through its constraints, into @p matrix and its rhs: the residual
        * and the linear system of a Newton iterate in one pass over the
-       * cells. The models read their committed @p history.
+       * cells. The models read their committed @p history. With a
+       * @p matrix and @p pin_rows, the rows of its DoFs go there too.
        */
       void
       assemble(const DoFHandler<dim>               &dof_handler,
@@ -123,7 +137,8 @@ namespace Signorini
                TrilinosWrappers::MPI::Vector       &rhs,
                TrilinosWrappers::MPI::Vector       &internal_force,
                TrilinosWrappers::MPI::Vector       &external_force,
-               const LinearSystemRhs *linear_system = nullptr) const;
+               const LinearSystemRhs               *linear_system = nullptr,
+               const PinRows                       *pin_rows = nullptr) const;
 
       /** F_ext alone (the Neumann loads and, @p with_body_force, the body
        * force, at the time of the functions) into @p external_force (owned;
@@ -194,6 +209,16 @@ namespace Signorini
       }
 
     private:
+      /** The rows of @p cell_matrix of the DoFs of @p pin_rows
+       * (PinRows), columns through @p constraints, and the shift of a
+       * @p first_update. */
+      void
+      add_pin_rows(const FullMatrix<double>                   &cell_matrix,
+                   const std::vector<types::global_dof_index> &dofs,
+                   const AffineConstraints<double>            &constraints,
+                   const AffineConstraints<double>            *first_update,
+                   const PinRows                              &pin_rows) const;
+
       /** The kinematics of one cell: FEValues, the 3D strain of each shape
        * function at each point (B, B-bar with the projection), the volume
        * element dV (2 pi r dA axisymmetric) and the 3D strain of the

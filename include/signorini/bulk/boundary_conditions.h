@@ -113,6 +113,15 @@ namespace Signorini
                                 AffineConstraints<double> &values,
                                 AffineConstraints<double> &update);
 
+      /** The DoFs whose line an 'At point' condition added (locally
+       * relevant): a pin at a point, where a contact node's support force
+       * and its friction share one DoF (theory.md F8, pins). */
+      const std::set<types::global_dof_index> &
+      point_lines() const
+      {
+        return point_line_dofs;
+      }
+
       /** Collective: the reactions (the sums of @p support_force, owned,
        * over the DoFs of each condition; below 1e-12 @p force_scale
        * printed as zero) and the mean of @p solution there. */
@@ -199,6 +208,9 @@ namespace Signorini
       // of its boundaries (the mean displacement), sorted.
       std::vector<std::vector<std::pair<types::global_dof_index, unsigned int>>>
         dirichlet_dofs;
+      // The DoFs of the lines 'At point' conditions added; written by
+      // add_dirichlet_constraints() only.
+      std::set<types::global_dof_index> point_line_dofs;
     };
   } // namespace Bulk
 } // namespace Signorini

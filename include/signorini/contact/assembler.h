@@ -17,6 +17,7 @@
 #include <signorini/contact/surfaces.h>
 #include <signorini/core/parameters.h>
 
+#include <set>
 #include <vector>
 
 namespace Signorini
@@ -95,6 +96,16 @@ namespace Signorini
                const bool                           new_iterate,
                const TrilinosWrappers::MPI::Vector &weight_state);
 
+      /** The pinned DoFs (Surfaces::pins()) whose node sticks at the last
+       * assemble(), over all ranks: their node's rows along the held
+       * tangent are the pin's support force R_d = 0 (theory.md F8, pins;
+       * the bulk's part is added by EquilibriumProblem). */
+      const std::set<types::global_dof_index> &
+      sticking_pins() const
+      {
+        return stick_pins;
+      }
+
     private:
       // What one point computes on the way to its rows (helpers.h).
       struct PointEvaluation;
@@ -136,6 +147,24 @@ namespace Signorini
                      const PointEvaluation &e,
                      FullMatrix<double>    &K) const;
 
+      /** stick_pins from the node statuses (collective). */
+      void
+      find_sticking_pins();
+
+      /** Adds row @p a of a group's local rows (@p K, @p F on @p dofs),
+       * the contact's part of the support force R_d of a sticking pin, to
+       * the held-tangent rows of its node: a_k (-R_d) into @p rhs (with
+       * -K g of the inhomogeneous columns of @p constraints when there is
+       * a @p matrix), a_k dR_d into @p matrix (columns condensed). */
+      void
+      add_pin_rows(const unsigned int                          a,
+                   const FullMatrix<double>                   &K,
+                   const Vector<double>                       &F,
+                   const std::vector<types::global_dof_index> &dofs,
+                   const AffineConstraints<double>            &constraints,
+                   TrilinosWrappers::SparseMatrix             *matrix,
+                   TrilinosWrappers::MPI::Vector              &rhs) const;
+
       /** The derivatives of the friction rows of a node-status pair, the
        * status of each node fixed. */
       void
@@ -152,6 +181,8 @@ namespace Signorini
       ActiveSetHistory<dim>   &history;
       const std::vector<bool> &newton_geometry_pair;
       MPI_Comm                 comm;
+      // Written by assemble() (find_sticking_pins) only.
+      std::set<types::global_dof_index> stick_pins;
     };
   } // namespace Contact
 } // namespace Signorini

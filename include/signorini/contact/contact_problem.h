@@ -65,6 +65,8 @@
  *   node_statuses.cc        class NodeStatuses: statuses per node
  *   active_set_history.cc   class ActiveSetHistory: anti-cycling, freezes,
  *                           releases, extrapolation
+ *   pin_rows.cc             the contact's part of a sticking pinned node's
+ *                           rows (the pin's support force)
  *   assembler.cc            class Assembler: the point loop, point state
  *                           and law response
  *   local_rows.cc           its local residual and Jacobian of a point
@@ -135,12 +137,14 @@ namespace Signorini
        * Finds the slave and master surfaces, numbers the multipliers and
        * computes the coefficients. Needs the displacement constraints
        * (hanging nodes and Dirichlet) of the locally relevant DoFs to decide
-       * which slave nodes are excluded (theory.md F8, over-constraint).
+       * which slave nodes are excluded (theory.md F8, over-constraint),
+       * and @p pins, the DoFs of the lines that pin a point.
        */
       void
-      setup(const AffineConstraints<double> &u_constraints,
-            const IndexSet                  &locally_owned_u,
-            ConditionalOStream              &pcout);
+      setup(const AffineConstraints<double>         &u_constraints,
+            const IndexSet                          &locally_owned_u,
+            const std::set<types::global_dof_index> &pins,
+            ConditionalOStream                      &pcout);
 
       /** The contact points and their pairing (pairing.h). */
       const Pairing<dim> &
@@ -306,6 +310,20 @@ namespace Signorini
       newly_pinned() const
       {
         return pairing.newly_pinned();
+      }
+
+      /** NodeStatuses::set_pin_loads(). */
+      void
+      set_pin_loads(std::map<types::global_dof_index, double> loads)
+      {
+        node_statuses.set_pin_loads(std::move(loads));
+      }
+
+      /** Assembler::sticking_pins(). */
+      const std::set<types::global_dof_index> &
+      sticking_pins() const
+      {
+        return assembler.sticking_pins();
       }
 
       /** Opaque copy of the per-point state (statuses, values, anti-cycling

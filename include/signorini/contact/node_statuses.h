@@ -158,6 +158,14 @@ namespace Signorini
       PointResponse<dim>
       response(const ContactPoint<dim> &point, const PointState<dim> &s) const;
 
+      /** The bulk's force F_int - F_ext at each pinned DoF at the state
+       * of the next decide() (theory.md F8, pins). */
+      void
+      set_pin_loads(std::map<types::global_dof_index, double> loads)
+      {
+        pin_loads = std::move(loads);
+      }
+
       /** True if a node of @p face has a held tangent. */
       static bool
       has_held_node(const SlaveFace<dim> &face);
@@ -179,6 +187,13 @@ namespace Signorini
                       ActiveSetHistory<dim>               &history,
                       ContactStatistics                   &stats);
 
+      /** The Lambda at which the pin of @p pinned carries nothing. */
+      double
+      pin_demand(const types::global_dof_index pinned,
+                 const double                  lambda,
+                 const double                  mu,
+                 const NodeSums               &sums) const;
+
       const Surfaces<dim> &surfaces;
       const Pairing<dim>  &pairing;
       const Coefficients  &coefficients;
@@ -197,6 +212,10 @@ namespace Signorini
       // stick, and H_l = Lambda_l + rho_t W_l / D_l with the weighted slip
       // W_l (theory.md).
       NodeFrictionMap node_friction;
+      // F_int - F_ext at the pinned DoFs (key: the DoF, every rank's);
+      // written by set_pin_loads() (EquilibriumProblem, after each bulk
+      // assembly, through ContactProblem).
+      std::map<types::global_dof_index, double> pin_loads;
     };
   } // namespace Contact
 } // namespace Signorini

@@ -59,6 +59,11 @@ namespace Signorini
       // (its slip there is the condition's, and the support carries the
       // force), theory.md F8. Written by Surfaces::finish_slave_faces.
       std::vector<Tensor<2, dim - 1>> held;
+      // Per node: the DoF of the pin holding its one held tangent (an 'At
+      // point' condition), else invalid. Sticking, its rows along Q are
+      // the pin's support force R_d = 0 (the pin carries only what
+      // friction cannot), added by PinRows. Written with held.
+      std::vector<types::global_dof_index> pin;
     };
 
 
@@ -103,7 +108,10 @@ namespace Signorini
       // 3D, one tangent held: a in the node's frame; empty otherwise
       // (SlaveFace::held is built from it and exclude_friction, which
       // means both held).
-      std::vector<double>                                     friction_held;
+      std::vector<double> friction_held;
+      // The DoF of the pin ('At point' line) holding its one held tangent;
+      // invalid: none (SlaveFace::pin).
+      types::global_dof_index pin = numbers::invalid_dof_index;
       std::vector<std::pair<types::global_dof_index, double>> hanging;
       // A node on the axis of an axisymmetric model on a quadratic face,
       // whose weight int psi_l 2 pi r is zero or nearly: its lambda from the
@@ -116,7 +124,7 @@ namespace Signorini
       serialize(Archive &ar, const unsigned int)
       {
         ar &lambda &friction &pair &exclude_contact &exclude_friction
-          &friction_held &hanging &closure;
+          &friction_held &pin &hanging &closure;
       }
     };
 

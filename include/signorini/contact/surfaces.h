@@ -16,6 +16,7 @@
 #include <signorini/core/parameters.h>
 
 #include <map>
+#include <set>
 #include <vector>
 
 /**
@@ -78,13 +79,15 @@ namespace Signorini
        * multipliers and decides the exclusions from the displacement
        * constraints (hanging nodes and Dirichlet) of the locally relevant
        * DoFs @p u_constraints. The faces of the pairs marked in
-       * @p dual_pair get the dual multiplier basis. An input error if a
-       * pair's boundary ids name no face of the mesh.
+       * @p dual_pair get the dual multiplier basis. @p pins: the DoFs
+       * whose line pins a point ('At point' conditions; theory.md F8). An
+       * input error if a pair's boundary ids name no face of the mesh.
        */
       Counts
-      setup(const AffineConstraints<double> &u_constraints,
-            const IndexSet                  &owned_u,
-            const std::vector<bool>         &dual_pair);
+      setup(const AffineConstraints<double>         &u_constraints,
+            const IndexSet                          &owned_u,
+            const std::vector<bool>                 &dual_pair,
+            const std::set<types::global_dof_index> &pins);
 
       const PairScales &
       pair_scales() const
@@ -176,6 +179,21 @@ namespace Signorini
       {
         return node_info;
       }
+
+      /** A slave node whose one held tangent a pin holds (NodeInfo::pin):
+       * the pinned DoF, the node's multipliers, and a, the held tangent
+       * in the node's frame (1 in 2D). */
+      struct Pin
+      {
+        types::global_dof_index lambda, friction;
+        Tensor<1, dim - 1>      a;
+      };
+      /** Every pinned slave node of any rank, keyed by the pinned DoF. */
+      const std::map<types::global_dof_index, Pin> &
+      pins() const
+      {
+        return pin_nodes;
+      }
       /** The cell of a master face this rank owns (own_cell >= 0). */
       const typename DoFHandler<dim>::active_cell_iterator &
       master_cell(const MasterFace<dim> &face) const
@@ -265,9 +283,10 @@ namespace Signorini
        * displacements, decides their exclusions and hanging weights, and
        * gathers every node's from all ranks. */
       Counts
-      number_multipliers(const Scan                      &scan,
-                         const IndexSet                  &owned_u,
-                         const AffineConstraints<double> &u_constraints);
+      number_multipliers(const Scan                              &scan,
+                         const IndexSet                          &owned_u,
+                         const AffineConstraints<double>         &u_constraints,
+                         const std::set<types::global_dof_index> &pins);
       /** Master faces and the constraint lines of their DoFs from all
        * ranks; the ghost index sets. */
       void
@@ -299,8 +318,10 @@ namespace Signorini
       // and multipliers.
       IndexSet owned, owned_system, extra, ghost_multipliers;
       std::map<types::global_dof_index, NodeInfo> node_info; // key: x-dof
-      std::vector<SlaveFace<dim>>                 slaves;
-      std::vector<MasterFace<dim>>                masters;
+      // Written with node_info (number_multipliers).
+      std::map<types::global_dof_index, Pin> pin_nodes;
+      std::vector<SlaveFace<dim>>            slaves;
+      std::vector<MasterFace<dim>>           masters;
       // The cells of the master faces this rank owns (MasterFace::own_cell).
       std::vector<typename DoFHandler<dim>::active_cell_iterator>
         own_master_cells;

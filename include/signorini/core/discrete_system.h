@@ -10,6 +10,7 @@
 #include <deal.II/fe/mapping_q_cache.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <signorini/bulk/boundary_conditions.h>
@@ -40,9 +41,10 @@ namespace Signorini
    * - constraints_*: make_constraints() and
    *   make_first_update_constraints(), called by LoadStep (the time of a
    *   step, its first update) and Simulation (setup);
-   * - matrix, layout_count: make_sparsity() (called at each pairing by
-   *   LoadStep, by Simulation without contact); the entries:
-   *   EquilibriumProblem (assembly);
+   * - matrix, layout_count, pin_dofs, pin_rows' layout: make_sparsity()
+   *   (called at each pairing by LoadStep, by Simulation without contact);
+   *   the entries of matrix, pin_rows and pin_shift: EquilibriumProblem
+   *   (assembly);
    * - state between Newton iterates: LoadStep alone (the predictor in
    *   start(), the initial multipliers at the first pairing, the values of
    *   a first update already met in arm_first_update(), a retry or a
@@ -112,6 +114,12 @@ namespace Signorini
     make_sparsity(const Contact::ContactProblem<dim> &contact,
                   Solver::LinearSolver<dim>          &linear_solver);
 
+    /** pin_dofs, the layout of pin_rows and the held-tangent rows of
+     * the pinned nodes in @p sp (make_sparsity()). */
+    void
+    make_pin_rows(const Contact::ContactProblem<dim> &contact,
+                  TrilinosWrappers::SparsityPattern  &sp);
+
     /** The u part of state -> solution. */
     void
     update_solution();
@@ -139,6 +147,13 @@ namespace Signorini
     AffineConstraints<double> constraints_first;
 
     TrilinosWrappers::SparseMatrix matrix;
+    // The pinned DoFs of sticking-capable slave nodes (theory.md F8,
+    // pins; Contact::Surfaces::pins()) and the bulk Jacobian rows of those
+    // a rank owns, kept unconstrained (columns condensed); pin_shift:
+    // sum_c K_dc g_c of a first update's prescribed increments.
+    std::set<types::global_dof_index> pin_dofs;
+    TrilinosWrappers::SparseMatrix    pin_rows;
+    TrilinosWrappers::MPI::Vector     pin_shift;
     // Counts the changes of the matrix layout and of the constraints
     // (make_sparsity(), make_constraints()): a bulk matrix assembled at
     // one count is the bulk matrix of a linear bulk while the count stays.

@@ -125,6 +125,16 @@ namespace Signorini
      * the next solve (a pending first update). */
     void
     assemble_bulk(const bool with_jacobian);
+    /** F_int - F_ext at the pinned DoFs to the contact's statuses
+     * (collective; nothing without pins). */
+    void
+    share_pin_loads();
+
+    /** The bulk's part of the rows of the sticking pinned nodes this rank
+     * owns (theory.md F8, pins), with their Jacobian if @p with_matrix. */
+    void
+    add_pin_rows(const bool with_matrix);
+
     /** The contact terms at the iterate into newton_rhs (and the matrix
      * if @p with_matrix), through @p constraints. @p new_iterate: the
      * statuses are updated for the status history (not for a line-search
