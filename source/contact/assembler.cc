@@ -245,17 +245,23 @@ namespace Signorini
           s.held = Tensor<2, dim - 1>();
       }
       // A point at a pinned node (theory.md F8, pins): its traction takes
-      // Lambda as it is (the stick branch), whatever the node's status,
-      // which the node's rows carry; so the pin's balance R_d has its
-      // derivative in Lambda at every iterate.
+      // Lambda as it is (the stick branch, all tangents held), whatever
+      // the node's status, which the node's rows carry; so the pin's
+      // balance R_d has its derivative in Lambda at every iterate.
       bool pinned = false;
       for (unsigned int l = 0; l < e.n_l; ++l)
         if (psi[l] > 1e-12 && face.pin[l] != numbers::invalid_dof_index)
           pinned = true;
       if (pinned)
         {
+          // All tangents as held: the traction is mu lambda T Lambda, with
+          // no rho_t v along the free one (3D) either; at convergence that
+          // is the node's traction in both statuses.
           s.freeze_stick          = true;
           s.frozen_slip_direction = Tensor<1, dim>();
+          s.held                  = Tensor<2, dim - 1>();
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            s.held[k][k] = 1;
         }
       e.r = e.by_node ? node_statuses.response(point, s) :
                         evaluate_contact_law(s, e.law);

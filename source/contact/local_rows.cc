@@ -259,11 +259,20 @@ namespace Signorini
             for (unsigned int k = 0; k < dim - 1; ++k)
               for (unsigned int kk = 0; kk < dim - 1; ++kk)
                 KB[k][kk] = ((k == kk) - nf.H[k] * nf.H[kk] / (nH * nH)) / nH;
+          // A pinned node's H has Lambda* in place of a . Lambda: dH/dLambda
+          // = I - Q, and dH/dlambda (NodeFriction::dH_dlambda).
+          const bool         pinned = face.pin[l] != numbers::invalid_dof_index;
+          Tensor<2, dim - 1> KB_L   = KB;
+          if (pinned)
+            KB_L = KB - KB * Q;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
               for (unsigned int kk = 0; kk < dim - 1; ++kk)
                 K(of + k, of + kk) +=
-                  wl * law.mu * lw / law.rho_t * ((k == kk) - KB[k][kk]);
+                  wl * law.mu * lw / law.rho_t * ((k == kk) - KB_L[k][kk]);
+              if (pinned)
+                K(of + k, e.o_c + l) +=
+                  wl * law.mu * lw / law.rho_t * -(KB * nf.dH_dlambda)[k];
               if (point.paired)
                 for (unsigned int a = 0; a < n_u; ++a)
                   {

@@ -22,8 +22,8 @@ namespace Signorini
       TrilinosWrappers::MPI::Vector              G, D, P;
       std::vector<TrilinosWrappers::MPI::Vector> W;
       // Pinned nodes (Surfaces::pins()): A_l = sum w psi_l n_c and
-      // B_l = sum w psi_l tau_c over their points, c the pinned component
-      // (empty without pins).
+      // B_l = sum w psi_l (T a)_c over their points, c the pinned
+      // component, a the held tangent (empty without pins).
       TrilinosWrappers::MPI::Vector A, B;
     };
 
@@ -166,8 +166,12 @@ namespace Signorini
                               face.pin[l]) -
                     (face.node_dofs.begin() + l * dim);
                   const double wd = point.weight * point.psi[l];
+                  const auto  &a  = surfaces.pins().at(face.pin[l]).a;
+                  double       Ta = 0; // (T a) . e_c
+                  for (unsigned int k = 0; k < dim - 1; ++k)
+                    Ta += a[k] * point.tangents[k][c];
                   add_entry(A, face.lambda_dofs[l], wd * point.normal[c]);
-                  add_entry(B, face.lambda_dofs[l], wd * point.tangents[0][c]);
+                  add_entry(B, face.lambda_dofs[l], wd * Ta);
                 }
             }
         }
@@ -313,15 +317,26 @@ namespace Signorini
                     nf.H[k] = state[face.friction_dofs[l * (dim - 1) + k]] +
                               law.rho_t * sums.W[k][dof] / sums.D[dof];
                   if (face.pin[l] != numbers::invalid_dof_index)
-                    nf.H[0] +=
-                      pin_demand(face.pin[l], state[dof], law.mu, sums) -
-                      state[face.friction_dofs[l * (dim - 1)]];
+                    add_pin_demand(face, l, state, law.mu, sums, nf);
                   nf.stick = nf.H.norm() <= 1. + stick_tie;
                 }
               const bool  owned = surfaces.owned_multipliers().is_element(dof);
               const auto *previous = find_friction(dof);
-              const auto  used     = history.node_anti_cycling(
+              auto        used     = history.node_anti_cycling(
                 dof, nf, previous, new_iterate, owned, stats);
+              used.slip_gain = Tensor<1, dim - 1>();
+              if (dim == 3 && face.pin[l] != numbers::invalid_dof_index &&
+                  used.active && !used.stick && !used.frozen)
+                {
+                  // K_B = (I - q q) / |H|, q = H / |H|.
+                  const double nH = used.H.norm();
+                  for (unsigned int k = 0; k < dim - 1; ++k)
+                    for (unsigned int j = 0; j < dim - 1; ++j)
+                      used.slip_gain[k] +=
+                        -law.mu * state[dof] * sums.D[dof] *
+                        ((k == j) - used.H[k] * used.H[j] / (nH * nH)) / nH *
+                        used.dH_dr[j];
+                }
               if (owned &&
                   ActiveSetHistory<dim>::friction_status_differs(previous,
                                                                  used))
@@ -333,27 +348,45 @@ namespace Signorini
     }
 
 
-    // A pinned node (theory.md F8, pins): the Lambda for which its pin
-    // carries nothing, from the pinned DoF's balance R_d = 0 with the
-    // bulk's force r_d = F_int - F_ext there and the node's contact force
-    // -lambda A - mu lambda B Lambda (the nodal rule: the node's own
-    // multipliers): Lambda* = (r_d - lambda A) / (mu lambda B). It takes
-    // the place of Lambda in H: the node sticks while friction can carry
-    // that, and slides (the pin carrying the rest) otherwise; sliding
-    // (|Lambda| = 1), it sticks again when the pin would pull.
+    // A pinned node (theory.md F8, pins): Lambda*, the Lambda along its
+    // held tangent a for which its pin carries nothing, from the pinned
+    // DoF's balance R_d = 0 with the bulk's force r_d = F_int - F_ext there
+    // and the node's contact force -lambda A - mu lambda B (a . Lambda)
+    // (the nodal rule: the node's own multipliers; exact at convergence,
+    // where the gap is closed): Lambda* = (r_d - lambda A) / (mu lambda B).
+    // It takes the place of a . Lambda in H: the node sticks while friction
+    // can carry that, and slides (the pin carrying the rest) otherwise;
+    // sliding (|Lambda| = 1), it sticks again when the pin would pull. With
+    // a . Lambda itself a saturated node sits on |H| = 1 and flips.
     template <int dim>
-    double
-    NodeStatuses<dim>::pin_demand(const types::global_dof_index pinned,
-                                  const double                  lambda,
-                                  const double                  mu,
-                                  const NodeSums               &sums) const
+    void
+    NodeStatuses<dim>::add_pin_demand(
+      const SlaveFace<dim>                &face,
+      const unsigned int                   l,
+      const TrilinosWrappers::MPI::Vector &state,
+      const double                         mu,
+      const NodeSums                      &sums,
+      NodeFriction<dim>                   &nf) const
     {
-      const auto  &pin = surfaces.pins().at(pinned);
-      const double B   = sums.B[pin.lambda];
-      const double r_d = pin_loads.at(pinned);
+      const auto  &pin    = surfaces.pins().at(face.pin[l]);
+      const double lambda = state[pin.lambda];
+      const double B      = sums.B[pin.lambda];
+      const double r_d    = pin_loads.at(face.pin[l]);
+      nf.dH_dlambda       = Tensor<1, dim - 1>();
+      nf.dH_dr            = Tensor<1, dim - 1>();
       if (std::abs(B) <= 1e-12 * sums.D[pin.lambda])
-        return 0.;
-      return (r_d - lambda * sums.A[pin.lambda]) / (mu * lambda * B);
+        return;
+      const double demand =
+        (r_d - lambda * sums.A[pin.lambda]) / (mu * lambda * B);
+      double aL = 0;
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        aL += pin.a[k] * state[face.friction_dofs[l * (dim - 1) + k]];
+      for (unsigned int k = 0; k < dim - 1; ++k)
+        {
+          nf.H[k] += pin.a[k] * (demand - aL);
+          nf.dH_dlambda[k] = pin.a[k] * -r_d / (mu * lambda * lambda * B);
+          nf.dH_dr[k]      = pin.a[k] / (mu * lambda * B);
+        }
     }
 
 

@@ -409,11 +409,12 @@ namespace Signorini
               info.exclude_friction = !a;
               if (a && a->norm() > 0)
                 info.friction_held.assign(a->begin_raw(), a->end_raw());
-              // In 2D, the tangent held by a pin at a point, against a rigid
+              // One tangent held, by a pin at a point, against a rigid
               // master: its rows there are the pin's support force
               // (theory.md F8, pins).
-              if (dim == 2 && tangential_dofs.size() == 1 &&
+              if (tangential_dofs.size() == 1 &&
                   pins.count(tangential_dofs[0]) > 0 &&
+                  (dim == 2 || info.friction_held.size() == dim - 1) &&
                   !pairs[node.pair].master_is_body())
                 info.pin = tangential_dofs[0];
             }

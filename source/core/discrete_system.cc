@@ -144,8 +144,9 @@ namespace Signorini
 
 
   // The layout of pin_rows (the bulk rows of the pinned DoFs, columns
-  // condensed) and, in @p sp, the same columns in the held-tangent rows of
-  // their nodes, which take those rows while the node sticks.
+  // condensed) and, in @p sp, the same columns in the friction rows of
+  // their nodes, which take those rows while the node sticks (and in 3D
+  // while it slides: its H depends on them).
   template <int dim>
   void
   DiscreteSystem<dim>::make_pin_rows(
@@ -179,8 +180,7 @@ namespace Signorini
       if (locally_owned.is_element(d))
         for (auto it = pin_sp.begin(d); it != pin_sp.end(d); ++it)
           for (unsigned int k = 0; k < dim - 1; ++k)
-            if (pin.a[k] != 0)
-              sp.add(pin.friction + k, it->column());
+            sp.add(pin.friction + k, it->column());
     pin_rows.reinit(pin_sp);
     pin_shift.reinit(locally_owned, locally_relevant, mpi_communicator, true);
   }

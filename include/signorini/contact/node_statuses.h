@@ -187,12 +187,16 @@ namespace Signorini
                       ActiveSetHistory<dim>               &history,
                       ContactStatistics                   &stats);
 
-      /** The Lambda at which the pin of @p pinned carries nothing. */
-      double
-      pin_demand(const types::global_dof_index pinned,
-                 const double                  lambda,
-                 const double                  mu,
-                 const NodeSums               &sums) const;
+      /** Node @p l of @p face is pinned: its H takes Lambda*, the Lambda
+       * along the held tangent at which the pin carries nothing, and
+       * @p nf the derivatives of that (NodeFriction). */
+      void
+      add_pin_demand(const SlaveFace<dim>                &face,
+                     const unsigned int                   l,
+                     const TrilinosWrappers::MPI::Vector &state,
+                     const double                         mu,
+                     const NodeSums                      &sums,
+                     NodeFriction<dim>                   &nf) const;
 
       const Surfaces<dim> &surfaces;
       const Pairing<dim>  &pairing;

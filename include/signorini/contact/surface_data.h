@@ -139,6 +139,12 @@ namespace Signorini
       bool               stick  = false;
       bool               frozen = false;
       Tensor<1, dim - 1> H;
+      // A pinned node (theory.md F8, pins): H takes Lambda* along its held
+      // tangent a, so dH/dlambda = a dLambda*/dlambda, and, sliding, its
+      // rows depend on the bulk force r_d at the pinned DoF through
+      // dH/dr_d = a dLambda*/dr_d: slip_gain = -mu lambda_w D K_B dH/dr_d
+      // is the factor of r_d's Jacobian row in its rows (zero in 2D).
+      Tensor<1, dim - 1> dH_dlambda, dH_dr, slip_gain;
     };
     // Anti-cycling of the friction status per node, as for points
     // (start_newton_solve()): the status of two iterates back, the cycles
