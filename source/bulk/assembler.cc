@@ -326,6 +326,18 @@ namespace Signorini
     }
 
 
+    const AffineConstraints<double> &
+    rows_as_they_are()
+    {
+      static const AffineConstraints<double> none = [] {
+        AffineConstraints<double> constraints;
+        constraints.close();
+        return constraints;
+      }();
+      return none;
+    }
+
+
     template <int dim>
     void
     Assembler<dim>::add_pin_rows(
@@ -336,11 +348,6 @@ namespace Signorini
       const PinRows                              &pin_rows) const
     {
       // Rows kept as they are, columns condensed.
-      static const AffineConstraints<double> rows_as_they_are = [] {
-        AffineConstraints<double> none;
-        none.close();
-        return none;
-      }();
       const unsigned int n = dofs.size();
       FullMatrix<double> row(1, n);
       for (unsigned int i = 0; i < n; ++i)
@@ -348,7 +355,7 @@ namespace Signorini
           {
             for (unsigned int j = 0; j < n; ++j)
               row(0, j) = cell_matrix(i, j);
-            rows_as_they_are.distribute_local_to_global(
+            rows_as_they_are().distribute_local_to_global(
               row, {dofs[i]}, constraints, dofs, pin_rows.matrix);
             if (first_update)
               {

@@ -7,6 +7,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
 
+#include <signorini/bulk/assembler.h>
 #include <signorini/contact/assembler.h>
 #include <signorini/contact/distributed_vectors.h>
 
@@ -64,11 +65,6 @@ namespace Signorini
           if (constraints.is_inhomogeneously_constrained(dofs[j]))
             shifted -= K(a, j) * constraints.get_inhomogeneity(dofs[j]);
       // Rows kept as they are, columns condensed.
-      static const AffineConstraints<double> rows_as_they_are = [] {
-        AffineConstraints<double> none;
-        none.close();
-        return none;
-      }();
       FullMatrix<double> row(1, dofs.size());
       for (unsigned int k = 0; k < dim - 1; ++k)
         {
@@ -80,7 +76,7 @@ namespace Signorini
             continue;
           for (unsigned int j = 0; j < dofs.size(); ++j)
             row(0, j) = pin.a[k] * K(a, j);
-          rows_as_they_are.distribute_local_to_global(
+          Bulk::rows_as_they_are().distribute_local_to_global(
             row, {l}, constraints, dofs, *matrix);
         }
     }

@@ -159,12 +159,10 @@ namespace Signorini
     const auto &pins = contact.contact_surfaces().pins();
     for (const auto &pin : pins)
       pin_dofs.insert(pin.first);
-    TrilinosWrappers::SparsityPattern pin_sp(owned_system,
+    TrilinosWrappers::SparsityPattern    pin_sp(owned_system,
                                              owned_system,
                                              relevant_system,
                                              mpi_communicator);
-    AffineConstraints<double>         rows_as_they_are;
-    rows_as_they_are.close();
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -172,7 +170,7 @@ namespace Signorini
           cell->get_dof_indices(dofs);
           for (const auto d : dofs)
             if (pin_dofs.count(d) > 0)
-              rows_as_they_are.add_entries_local_to_global(
+              Bulk::rows_as_they_are().add_entries_local_to_global(
                 {d}, constraints_update, dofs, pin_sp, false);
         }
     pin_sp.compress();

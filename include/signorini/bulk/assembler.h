@@ -81,6 +81,14 @@ namespace Signorini
       return theta_bar ? Material::with_volumetric(e, *theta_bar) : e;
     }
 
+    /** An empty, closed AffineConstraints: as the row constraints of
+     * AffineConstraints::distribute_local_to_global() or
+     * add_entries_local_to_global() with other column constraints, it keeps
+     * constrained rows as they are (the pinned rows, theory.md F8). */
+    const AffineConstraints<double> &
+    rows_as_they_are();
+
+
     template <int dim>
     class Assembler
     {

@@ -59,7 +59,9 @@
  *                           multipliers, snapshots (coefficients: class
  *                           Coefficients)
  *   surfaces.cc             class Surfaces: faces, multiplier numbering,
- *                           exclusions, constraint lines, positions X + u
+ *                           exclusions, constraint lines
+ *   surfaces_fields.cc      positions X + u, master increments, the
+ *                           multipliers to and from fields
  *   pairing.cc              class Pairing: the contact points, search,
  *                           projection, mortar segmentation
  *   node_statuses.cc        class NodeStatuses: statuses per node
