@@ -388,6 +388,12 @@ namespace Signorini
                       info.hanging = *entries;
                     continue;
                   }
+                // A pin against a meshed master holds the node, not the
+                // master point beneath it, which the contact rows still
+                // tie to it: they stay the plain ones (theory.md F8, pins).
+                if (pins.count(node.dofs[c]) > 0 &&
+                    pairs[node.pair].master_is_body())
+                  continue;
                 bool along_normal = false;
                 for (const auto &n : node.normals)
                   along_normal |= std::abs(n * held) > 0.5 * held.norm();
@@ -414,8 +420,7 @@ namespace Signorini
               // (theory.md F8, pins).
               if (tangential_dofs.size() == 1 &&
                   pins.count(tangential_dofs[0]) > 0 &&
-                  (dim == 2 || info.friction_held.size() == dim - 1) &&
-                  !pairs[node.pair].master_is_body())
+                  (dim == 2 || info.friction_held.size() == dim - 1))
                 info.pin = tangential_dofs[0];
             }
           info.pair = node.pair;

@@ -29,6 +29,9 @@ mapped back before the comparison, by this script's own arithmetic:
                              in m, N, Pa: lengths /1e3, pressures *1e6,
                              forces *1e3 in 2D (per unit thickness), areas
                              /1e6 in 3D
+  --swap                     the variant swaps the slave and master sides
+                             of its pairs (--set their boundary ids): the
+                             force on the master changes sign
   --ignore KIND              a kind not compared (motion: a Dirichlet
                              value given instead as obstacle motion moves
                              the bodies by a rigid translation)
@@ -136,9 +139,11 @@ def expand(value, R):
 AXES = "xyz"
 
 
-def to_base_frame(rows, dim, R, mirror, units, axisymmetric=False):
+def to_base_frame(rows, dim, R, mirror, units, axisymmetric=False, swap=False):
     """The variant's rows mapped back to the base's frame and units (an
-    axisymmetric model's forces are totals [N], its areas areas)."""
+    axisymmetric model's forces are totals [N], its areas areas), and to
+    the base's sides of the pairs (@swap: the force on the master is the
+    other body's)."""
     length = 1e-3 if units == "mm" else 1.0
     per_thickness = dim == 2 and not axisymmetric
     area_power = 2 if axisymmetric else dim - 1
@@ -147,6 +152,8 @@ def to_base_frame(rows, dim, R, mirror, units, axisymmetric=False):
         row = dict(row)
         for column in list(row):
             k = kind(column)
+            if swap and re.match(r"contact_force_\d+_[xyz]$", column):
+                row[column] = -float(row[column])
             if k == "forces" and per_thickness:
                 row[column] = float(row[column]) / length
             elif k == "motion":
@@ -235,6 +242,7 @@ def main():
     parser.add_argument("--axis", default="0, 0, 1")
     parser.add_argument("--mirror", choices=list(AXES), default=None)
     parser.add_argument("--units", choices=["mm"], default=None)
+    parser.add_argument("--swap", action="store_true")
     parser.add_argument("--ignore", action="append", default=[], choices=[k for k, _ in KIND])
     a = parser.parse_args()
     base_dir = os.path.dirname(os.path.abspath(a.base))
@@ -255,8 +263,8 @@ def main():
     top = a.keep or tempfile.mkdtemp(prefix="invariant_")
     base = run(a.exe, a.mpiexec, base_lines, a.base_np, os.path.join(top, "base"), "base")
     variant = run(a.exe, a.mpiexec, variant_lines, a.np, os.path.join(top, "variant"), "variant")
-    if R is not None or a.mirror or a.units:
-        variant = to_base_frame(variant, dim, R, a.mirror, a.units, axisymmetric)
+    if R is not None or a.mirror or a.units or a.swap:
+        variant = to_base_frame(variant, dim, R, a.mirror, a.units, axisymmetric, a.swap)
     # max_abs_u, the largest nodal component, depends on the frame.
     skip = ["max_abs_u"] if R is not None else []
     ok = compare(base, variant, a.tol, a.last, a.counts == "equal", a.ignore, skip)
