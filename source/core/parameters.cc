@@ -7,6 +7,7 @@
 #include <signorini/contact/obstacles/interface.h>
 #include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
+#include <signorini/core/shared_libraries.h>
 #include <signorini/material/interface.h>
 #include <signorini/postprocess/interface.h>
 
@@ -626,6 +627,10 @@ namespace Signorini
                       "2",
                       Patterns::Integer(2, 3),
                       "Space dimension: 2 (plane strain) or 3.");
+    prm.declare_entry(shared_libraries_entry,
+                      "",
+                      Patterns::List(Patterns::FileName()),
+                      shared_libraries_documentation);
     prm.declare_entry("Axisymmetric",
                       "false",
                       Patterns::Bool(),

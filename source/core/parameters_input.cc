@@ -5,6 +5,7 @@
 #include <signorini/contact/obstacles/interface.h>
 #include <signorini/core/input_checks.h>
 #include <signorini/core/parameters.h>
+#include <signorini/core/shared_libraries.h>
 #include <signorini/material/interface.h>
 
 #include "parameters_helpers.h"
@@ -483,15 +484,18 @@ namespace Signorini
     parse_text(const std::string              &text,
                const std::string              &source,
                ParameterHandler               &prm,
-               const std::vector<std::string> &origins = {})
+               const std::vector<std::string> &origins   = {},
+               const std::string              &directory = ".")
     {
       check_parameter_text(text, source);
       check_duplicate_entries(text, source, origins);
-      // Pre-pass: only the counts, ignoring everything else.
+      // Pre-pass: only the counts and the plug-in libraries, ignoring
+      // everything else.
       Counts counts;
       {
         ParameterHandler pre;
         pre.declare_entry("Dimension", "2", Patterns::Anything());
+        pre.declare_entry(shared_libraries_entry, "", Patterns::Anything());
         pre.enter_subsection("Geometry");
         pre.declare_entry("Number of bodies", "1", Patterns::Integer(1, 16));
         pre.leave_subsection();
@@ -519,6 +523,11 @@ namespace Signorini
           {
             throw InputError(explain_parse_error(e, text, source, origins));
           }
+        // Loaded before the declarations: their plug-ins' names and
+        // subsections are declared with the library's.
+        load_shared_libraries(Utilities::split_string_list(
+                                pre.get(shared_libraries_entry)),
+                              directory);
         pre.enter_subsection("Geometry");
         counts.n_bodies = pre.get_integer("Number of bodies");
         pre.leave_subsection();
@@ -628,9 +637,10 @@ namespace Signorini
     check_parameter_text(buffer.str(), source);
     std::vector<std::string> origins;
     const std::string text = expand_includes(buffer.str(), filename, origins);
-    Parameters        parameters = parse_text(text, source, prm, origins);
-    parameters.input_directory   = directory_of(filename);
-    parameters.input_file        = filename;
+    Parameters        parameters =
+      parse_text(text, source, prm, origins, directory_of(filename));
+    parameters.input_directory = directory_of(filename);
+    parameters.input_file      = filename;
     return parameters;
   }
 

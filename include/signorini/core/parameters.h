@@ -35,6 +35,14 @@ namespace Signorini
     unsigned int n_dirichlet = 1;
     unsigned int n_neumann   = 0;
     unsigned int n_pairs     = 0;
+
+    /** One subsection of each numbered kind: the parameter listing
+     * (--print-parameters, doc/parameters.md). */
+    static Counts
+    listing()
+    {
+      return {1, 1, 1, 1, 1};
+    }
   };
 
   enum class BodyShape
