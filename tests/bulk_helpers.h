@@ -11,8 +11,8 @@
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/assembler.h>
-#include <signorini/core/parameters.h>
 #include <signorini/material/interface.h>
 
 #include <memory>

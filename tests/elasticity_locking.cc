@@ -15,8 +15,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <signorini/core/parameters.h>
-#include <signorini/core/simulation.h>
+#include <signorini/base/parameters.h>
+#include <signorini/driver/simulation.h>
 
 #include <cmath>
 #include <fstream>

@@ -21,8 +21,8 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/assembler.h>
-#include <signorini/core/parameters.h>
 #include <signorini/material/history.h>
 
 #include "bulk_helpers.h"

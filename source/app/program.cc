@@ -3,9 +3,9 @@
 #include <deal.II/base/mpi.h>
 
 #include <signorini/app/program.h>
-#include <signorini/core/errors.h>
-#include <signorini/core/parameters.h>
-#include <signorini/core/simulation.h>
+#include <signorini/base/errors.h>
+#include <signorini/base/parameters.h>
+#include <signorini/driver/simulation.h>
 
 #include <dlfcn.h>
 

@@ -6,10 +6,10 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <signorini/base/errors.h>
+#include <signorini/base/format.h>
+#include <signorini/base/input_checks.h>
 #include <signorini/bulk/boundary_conditions.h>
-#include <signorini/core/errors.h>
-#include <signorini/core/input_checks.h>
-#include <signorini/postprocess/format.h>
 
 #include <algorithm>
 #include <cmath>

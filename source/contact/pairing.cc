@@ -9,10 +9,10 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/base/output_files.h>
 #include <signorini/contact/distributed_vectors.h>
 #include <signorini/contact/pairing.h>
 #include <signorini/contact/segmentation.h>
-#include <signorini/postprocess/output_files.h>
 
 #include "helpers.h"
 

@@ -12,10 +12,10 @@
 #include <boost/serialization/vector.hpp>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/base/errors.h>
 #include <signorini/contact/distributed_vectors.h>
 #include <signorini/contact/projection.h>
 #include <signorini/contact/surfaces.h>
-#include <signorini/core/errors.h>
 
 #include "helpers.h"
 

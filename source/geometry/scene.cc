@@ -7,7 +7,7 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/physics/transformations.h>
 
-#include <signorini/core/input_checks.h>
+#include <signorini/base/input_checks.h>
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 

@@ -1,4 +1,4 @@
-#include <signorini/core/errors.h>
+#include <signorini/base/errors.h>
 #include <signorini/material/interface.h>
 
 namespace Signorini
@@ -21,6 +21,14 @@ namespace Signorini
                           "it, capitalised.");
       registry.declare_parameters(prm);
     }
+
+
+    namespace
+    {
+      // The family's declaration, handed to the parameters (base/plugins.h).
+      const Plugins::Declaration declaration(Plugins::Family::material,
+                                             declare_model_parameters);
+    } // namespace
 
 
     namespace

@@ -1,4 +1,4 @@
-#include <signorini/core/errors.h>
+#include <signorini/base/errors.h>
 #include <signorini/material/j2_plasticity.h>
 
 #include <array>

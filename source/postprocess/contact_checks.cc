@@ -1,9 +1,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
 
+#include <signorini/base/format.h>
 #include <signorini/postprocess/contact_checks.h>
 #include <signorini/postprocess/field_slips.h>
-#include <signorini/postprocess/format.h>
 
 #include "parsed_function.h"
 

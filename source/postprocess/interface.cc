@@ -23,6 +23,14 @@ namespace Signorini
     }
 
 
+    namespace
+    {
+      // The family's declaration, handed to the parameters (base/plugins.h).
+      const Plugins::Declaration declaration(Plugins::Family::postprocessor,
+                                             declare_parameters);
+    } // namespace
+
+
     template <int dim>
     std::vector<std::unique_ptr<Interface<dim>>>
     make_postprocessors(const Parameters &parameters, ParameterHandler &prm)

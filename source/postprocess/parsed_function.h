@@ -3,11 +3,11 @@
 
 // Private to source/postprocess/: the reference expressions of subsection
 // 'Reference solution' as functions of x, y(, z) and t. The expressions
-// were checked when the parameters were read (core/input_checks.cc).
+// were checked when the parameters were read (base/input_checks.cc).
 
 #include <deal.II/base/function_parser.h>
 
-#include <signorini/core/input_checks.h>
+#include <signorini/base/input_checks.h>
 
 #include <map>
 #include <memory>

@@ -16,7 +16,7 @@ namespace Signorini
     class ReferenceChecks : public Interface<dim>
     {
     public:
-      // Its parameters are subsection 'Reference solution' (core/parameters).
+      // Its parameters are subsection 'Reference solution' (base/parameters).
       static void
       declare_parameters(ParameterHandler &)
       {

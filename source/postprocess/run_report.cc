@@ -1,6 +1,6 @@
 // The report of a run: the Newton log (screen and newton_history.csv), the
 // step report on screen, statistics.csv, the run summary.
-#include <signorini/postprocess/format.h>
+#include <signorini/base/format.h>
 #include <signorini/postprocess/run_report.h>
 
 #include <algorithm>

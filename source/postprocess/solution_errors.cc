@@ -2,9 +2,9 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <signorini/base/format.h>
 #include <signorini/bulk/assembler.h>
 #include <signorini/material/projected_volumetric_strain.h>
-#include <signorini/postprocess/format.h>
 #include <signorini/postprocess/solution_errors.h>
 
 #include "parsed_function.h"

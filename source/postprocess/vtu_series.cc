@@ -1,7 +1,7 @@
 // Parallel VTU time series written through temporary names.
 #include <deal.II/base/utilities.h>
 
-#include <signorini/postprocess/output_files.h>
+#include <signorini/base/output_files.h>
 #include <signorini/postprocess/vtu_series.h>
 
 #include <algorithm>

@@ -15,7 +15,7 @@
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
-#include <signorini/core/errors.h>
+#include <signorini/base/errors.h>
 #include <signorini/solver/linear_solver.h>
 
 #include <algorithm>

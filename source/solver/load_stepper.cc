@@ -1,5 +1,5 @@
 // Quasi-static load stepping with step cuts.
-#include <signorini/postprocess/format.h>
+#include <signorini/base/format.h>
 #include <signorini/solver/load_stepper.h>
 
 namespace Signorini

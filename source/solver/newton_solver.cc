@@ -2,8 +2,8 @@
 // convergence rules, the line search and the reason of a failure.
 #include <deal.II/base/utilities.h>
 
-#include <signorini/core/errors.h>
-#include <signorini/postprocess/format.h>
+#include <signorini/base/errors.h>
+#include <signorini/base/format.h>
 #include <signorini/solver/newton_solver.h>
 
 #include <algorithm>

@@ -16,7 +16,7 @@ prefix="$tmp/prefix"
 cmake --install "$build" --prefix "$prefix" > "$tmp/install.log" ||
   { cat "$tmp/install.log"; exit 1; }
 for f in lib/cmake/Signorini/SignoriniConfig.cmake \
-         include/signorini/core/simulation.h bin/signorini; do
+         include/signorini/driver/simulation.h bin/signorini; do
   [[ -e "$prefix/$f" ]] || { echo "not installed: $f"; exit 1; }
 done
 

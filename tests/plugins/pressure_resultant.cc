@@ -7,8 +7,8 @@
 // main(): tests/postprocessor_plugin.prm.in runs it, and
 // tests/bad_input/pressure_resultant_wrong.prm.in shows that its check
 // bites.
+#include <signorini/base/format.h>
 #include <signorini/contact/contact_problem.h>
-#include <signorini/postprocess/format.h>
 #include <signorini/postprocess/interface.h>
 
 #include <cmath>

@@ -6,7 +6,7 @@
  * in the library so that the stock `signorini` (source/main.cc) and any
  * program of a user are the same program. A user's plug-ins need no
  * program at all: the stock one loads them from the parameter file
- * ('Additional shared libraries', core/shared_libraries.h).
+ * ('Additional shared libraries', base/shared_libraries.h).
  *
  *   signorini <file.prm>                   run the scene
  *   signorini --check <file.prm>...        read and check, solve nothing

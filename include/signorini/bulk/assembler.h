@@ -10,8 +10,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/boundary_conditions.h>
-#include <signorini/core/parameters.h>
 #include <signorini/material/history.h>
 #include <signorini/material/interface.h>
 #include <signorini/material/projected_volumetric_strain.h>

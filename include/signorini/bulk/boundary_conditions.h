@@ -8,7 +8,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <signorini/core/parameters.h>
+#include <signorini/base/parameters.h>
 
 #include <array>
 #include <map>

@@ -5,11 +5,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/types.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/contact/contact_point.h>
 #include <signorini/contact/contact_statistics.h>
 #include <signorini/contact/surface_data.h>
 #include <signorini/contact/surfaces.h>
-#include <signorini/core/parameters.h>
 
 #include <map>
 #include <set>

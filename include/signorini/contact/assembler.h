@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/contact/active_set_history.h>
 #include <signorini/contact/coefficients.h>
 #include <signorini/contact/contact_point.h>
@@ -15,7 +16,6 @@
 #include <signorini/contact/node_statuses.h>
 #include <signorini/contact/pairing.h>
 #include <signorini/contact/surfaces.h>
-#include <signorini/core/parameters.h>
 
 #include <map>
 #include <set>

@@ -1,8 +1,8 @@
 #ifndef signorini_contact_coefficients_h
 #define signorini_contact_coefficients_h
 
+#include <signorini/base/parameters.h>
 #include <signorini/contact/contact_law.h>
-#include <signorini/core/parameters.h>
 
 #include <vector>
 

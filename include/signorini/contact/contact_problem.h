@@ -17,6 +17,7 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/assembler.h>
 #include <signorini/contact/active_set_history.h>
 #include <signorini/contact/assembler.h>
@@ -31,7 +32,6 @@
 #include <signorini/contact/projection.h>
 #include <signorini/contact/surface_data.h>
 #include <signorini/contact/surfaces.h>
-#include <signorini/core/parameters.h>
 
 #include <limits>
 #include <map>

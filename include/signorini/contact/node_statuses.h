@@ -3,13 +3,13 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/contact/active_set_history.h>
 #include <signorini/contact/coefficients.h>
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/contact_statistics.h>
 #include <signorini/contact/pairing.h>
 #include <signorini/contact/surfaces.h>
-#include <signorini/core/parameters.h>
 
 #include <map>
 #include <vector>

@@ -5,11 +5,11 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/contact/contact_law.h>
 #include <signorini/contact/node_statuses.h>
 #include <signorini/contact/pairing.h>
 #include <signorini/contact/surfaces.h>
-#include <signorini/core/parameters.h>
 
 #include <limits>
 #include <string>

@@ -6,12 +6,12 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/contact/contact_point.h>
 #include <signorini/contact/integration_rule.h>
 #include <signorini/contact/obstacles/interface.h>
 #include <signorini/contact/projection.h>
 #include <signorini/contact/surfaces.h>
-#include <signorini/core/parameters.h>
 
 #include <array>
 #include <memory>

@@ -11,9 +11,9 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/assembler.h>
 #include <signorini/contact/surface_data.h>
-#include <signorini/core/parameters.h>
 
 #include <map>
 #include <set>

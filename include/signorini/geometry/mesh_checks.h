@@ -4,7 +4,7 @@
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/tria.h>
 
-#include <signorini/core/parameters.h>
+#include <signorini/base/parameters.h>
 
 #include <set>
 #include <string>

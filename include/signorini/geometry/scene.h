@@ -3,7 +3,7 @@
 
 #include <deal.II/distributed/tria.h>
 
-#include <signorini/core/parameters.h>
+#include <signorini/base/parameters.h>
 
 #include <set>
 

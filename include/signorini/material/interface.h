@@ -8,8 +8,8 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
-#include <signorini/core/parameters.h>
-#include <signorini/core/plugins.h>
+#include <signorini/base/parameters.h>
+#include <signorini/base/plugins.h>
 
 #include <cmath>
 #include <map>

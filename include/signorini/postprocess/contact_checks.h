@@ -6,8 +6,8 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/contact/contact_problem.h>
-#include <signorini/core/parameters.h>
 #include <signorini/postprocess/interface.h>
 
 #include <array>

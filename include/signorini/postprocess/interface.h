@@ -8,8 +8,8 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <signorini/core/parameters.h>
-#include <signorini/core/plugins.h>
+#include <signorini/base/parameters.h>
+#include <signorini/base/plugins.h>
 #include <signorini/material/history.h>
 #include <signorini/material/interface.h>
 

@@ -5,10 +5,10 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
 
+#include <signorini/base/output_files.h>
+#include <signorini/base/parameters.h>
 #include <signorini/contact/contact_problem.h>
-#include <signorini/core/parameters.h>
 #include <signorini/postprocess/interface.h>
-#include <signorini/postprocess/output_files.h>
 
 #include <array>
 #include <string>

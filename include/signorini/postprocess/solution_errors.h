@@ -3,7 +3,7 @@
 
 #include <deal.II/base/function_parser.h>
 
-#include <signorini/core/parameters.h>
+#include <signorini/base/parameters.h>
 #include <signorini/postprocess/interface.h>
 
 #include <memory>

@@ -6,7 +6,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <signorini/core/parameters.h>
+#include <signorini/base/parameters.h>
 
 #include <memory>
 

@@ -84,6 +84,14 @@ namespace Signorini
     }
 
 
+    namespace
+    {
+      // The family's declaration, handed to the parameters (base/plugins.h).
+      const Plugins::Declaration declaration(Plugins::Family::obstacle,
+                                             declare_master_parameters);
+    } // namespace
+
+
     template <int dim>
     std::vector<std::unique_ptr<Interface<dim>>>
     make_obstacles(const Parameters &parameters, ParameterHandler &prm)

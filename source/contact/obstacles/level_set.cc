@@ -1,7 +1,7 @@
 #include <deal.II/base/function_parser.h>
 
+#include <signorini/base/input_checks.h>
 #include <signorini/contact/obstacles/level_set.h>
-#include <signorini/core/input_checks.h>
 
 #include <sstream>
 

@@ -1,9 +1,9 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/physics/transformations.h>
 
+#include <signorini/base/input_checks.h>
+#include <signorini/base/parameters.h>
 #include <signorini/contact/obstacles/motion.h>
-#include <signorini/core/input_checks.h>
-#include <signorini/core/parameters.h>
 
 namespace Signorini
 {

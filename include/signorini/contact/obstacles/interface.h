@@ -6,9 +6,9 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <signorini/base/parameters.h>
+#include <signorini/base/plugins.h>
 #include <signorini/contact/obstacles/motion.h>
-#include <signorini/core/parameters.h>
-#include <signorini/core/plugins.h>
 
 #include <memory>
 #include <string>
@@ -17,7 +17,7 @@
 /**
  * Rigid obstacles: the master surface of a contact pair that is not a meshed
  * body ('Contact/Pair k/Master' names the obstacle). A plug-in family
- * (core/plugins.h): each obstacle is a class derived from
+ * (base/plugins.h): each obstacle is a class derived from
  * Obstacles::Interface<dim>, registered from its own source file with
  *
  *   SIGNORINI_REGISTER_OBSTACLE(Class, "name", "description")

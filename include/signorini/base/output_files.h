@@ -1,5 +1,5 @@
-#ifndef signorini_postprocess_output_files_h
-#define signorini_postprocess_output_files_h
+#ifndef signorini_base_output_files_h
+#define signorini_base_output_files_h
 
 #include <deal.II/base/mpi.h>
 

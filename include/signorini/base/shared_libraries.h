@@ -1,5 +1,5 @@
-#ifndef signorini_core_shared_libraries_h
-#define signorini_core_shared_libraries_h
+#ifndef signorini_base_shared_libraries_h
+#define signorini_base_shared_libraries_h
 
 #include <string>
 #include <vector>

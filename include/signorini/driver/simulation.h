@@ -1,19 +1,19 @@
-#ifndef signorini_core_simulation_h
-#define signorini_core_simulation_h
+#ifndef signorini_driver_simulation_h
+#define signorini_driver_simulation_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/assembler.h>
 #include <signorini/bulk/boundary_conditions.h>
 #include <signorini/contact/contact_problem.h>
-#include <signorini/core/discrete_system.h>
-#include <signorini/core/equilibrium_problem.h>
-#include <signorini/core/load_step.h>
-#include <signorini/core/parameters.h>
+#include <signorini/driver/discrete_system.h>
+#include <signorini/driver/equilibrium_problem.h>
+#include <signorini/driver/load_step.h>
+#include <signorini/driver/results.h>
 #include <signorini/postprocess/interface.h>
-#include <signorini/postprocess/results.h>
 #include <signorini/postprocess/run_report.h>
 #include <signorini/solver/linear_solver.h>
 #include <signorini/solver/load_stepper.h>
@@ -42,7 +42,7 @@ namespace Signorini
    * assembler and the contact problem, the EquilibriumProblem the Newton
    * solver iterates on, the LoadStep the load stepper advances, the
    * Results written after each step. Its members are defined in
-   * source/core/: simulation.cc (set-up), simulation_run.cc (the run over
+   * source/driver/: simulation.cc (set-up), simulation_run.cc (the run over
    * the load steps: cuts, adaptive cycles, the end of the run) and
    * simulation_adaptivity.cc (refinement and the transfer of the state).
    */

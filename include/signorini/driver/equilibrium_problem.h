@@ -1,14 +1,14 @@
-#ifndef signorini_core_equilibrium_problem_h
-#define signorini_core_equilibrium_problem_h
+#ifndef signorini_driver_equilibrium_problem_h
+#define signorini_driver_equilibrium_problem_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/assembler.h>
 #include <signorini/bulk/boundary_conditions.h>
 #include <signorini/contact/contact_problem.h>
-#include <signorini/core/discrete_system.h>
-#include <signorini/core/parameters.h>
+#include <signorini/driver/discrete_system.h>
 #include <signorini/postprocess/run_report.h>
 #include <signorini/solver/linear_solver.h>
 #include <signorini/solver/nonlinear_problem.h>

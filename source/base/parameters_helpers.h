@@ -1,8 +1,8 @@
-#ifndef signorini_source_core_parameters_helpers_h
-#define signorini_source_core_parameters_helpers_h
+#ifndef signorini_source_base_parameters_helpers_h
+#define signorini_source_base_parameters_helpers_h
 
 // Helpers shared by the source files of the parameters (private to
-// source/core/).
+// source/base/).
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>

@@ -4,7 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include <signorini/core/load_step.h>
+#include <signorini/driver/load_step.h>
 
 #include <algorithm>
 #include <array>

@@ -3,10 +3,10 @@
 // simulation_adaptivity.cc).
 #include <deal.II/base/utilities.h>
 
-#include <signorini/core/input_checks.h>
-#include <signorini/core/simulation.h>
+#include <signorini/base/format.h>
+#include <signorini/base/input_checks.h>
+#include <signorini/driver/simulation.h>
 #include <signorini/geometry/scene.h>
-#include <signorini/postprocess/format.h>
 
 #include <algorithm>
 #include <set>

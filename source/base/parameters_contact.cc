@@ -2,10 +2,9 @@
 // solution.
 #include <deal.II/base/utilities.h>
 
-#include <signorini/contact/obstacles/interface.h>
-#include <signorini/core/input_checks.h>
-#include <signorini/core/parameters.h>
-#include <signorini/material/interface.h>
+#include <signorini/base/input_checks.h>
+#include <signorini/base/parameters.h>
+#include <signorini/base/plugins.h>
 
 #include "parameters_helpers.h"
 
@@ -49,7 +48,7 @@ namespace Signorini
                       Patterns::List(Patterns::Integer(0, 255), 0),
                       "Boundary id(s) of the slave surface (one body): the "
                       "contact multipliers live on its nodes.");
-    Obstacles::declare_master_parameters(prm);
+    Plugins::declare(Plugins::Family::obstacle, prm);
     prm.declare_entry("Master boundary id",
                       "",
                       Patterns::List(Patterns::Integer(0, 255), 0),

@@ -1,12 +1,12 @@
-#ifndef signorini_core_load_step_h
-#define signorini_core_load_step_h
+#ifndef signorini_driver_load_step_h
+#define signorini_driver_load_step_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/vector.h>
 
-#include <signorini/core/equilibrium_problem.h>
+#include <signorini/driver/equilibrium_problem.h>
 #include <signorini/solver/load_stepper.h>
 #include <signorini/solver/newton_solver.h>
 

@@ -4,10 +4,10 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe_values.h>
 
-#include <signorini/core/errors.h>
+#include <signorini/base/errors.h>
+#include <signorini/base/output_files.h>
+#include <signorini/driver/results.h>
 #include <signorini/geometry/parts.h>
-#include <signorini/postprocess/output_files.h>
-#include <signorini/postprocess/results.h>
 
 #include <cmath>
 #include <filesystem>

@@ -1,5 +1,5 @@
-#ifndef signorini_core_errors_h
-#define signorini_core_errors_h
+#ifndef signorini_base_errors_h
+#define signorini_base_errors_h
 
 #include <stdexcept>
 

@@ -1,14 +1,14 @@
-#ifndef signorini_postprocess_results_h
-#define signorini_postprocess_results_h
+#ifndef signorini_driver_results_h
+#define signorini_driver_results_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
+#include <signorini/base/parameters.h>
 #include <signorini/bulk/boundary_conditions.h>
 #include <signorini/contact/contact_problem.h>
-#include <signorini/core/discrete_system.h>
-#include <signorini/core/parameters.h>
+#include <signorini/driver/discrete_system.h>
 #include <signorini/postprocess/interface.h>
 #include <signorini/postprocess/run_report.h>
 

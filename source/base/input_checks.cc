@@ -3,7 +3,7 @@
 #include <deal.II/base/mu_parser_internal.h>
 #include <deal.II/base/utilities.h>
 
-#include <signorini/core/input_checks.h>
+#include <signorini/base/input_checks.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
-#ifndef signorini_core_parameters_h
-#define signorini_core_parameters_h
+#ifndef signorini_base_parameters_h
+#define signorini_base_parameters_h
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
-#include <signorini/core/errors.h>
+#include <signorini/base/errors.h>
 
 #include <map>
 #include <stdexcept>

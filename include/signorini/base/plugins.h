@@ -1,9 +1,9 @@
-#ifndef signorini_core_plugins_h
-#define signorini_core_plugins_h
+#ifndef signorini_base_plugins_h
+#define signorini_base_plugins_h
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <signorini/core/parameters.h>
+#include <signorini/base/parameters.h>
 
 #include <algorithm>
 #include <functional>
@@ -139,6 +139,37 @@ namespace Signorini
             return std::make_unique<Model>();
           });
       }
+    };
+
+    /**
+     * The plug-in families whose selection entry and models' subsections
+     * the parameters declare: 'Materials/Material k/Model', 'Contact/Pair
+     * k/Master' (rigid obstacles), 'Output/Postprocessors'.
+     */
+    enum class Family
+    {
+      material,
+      obstacle,
+      postprocessor
+    };
+
+    /**
+     * Each family declares its own parameters (ASPECT's idiom): it hands
+     * its declaration to the parameters through a static Declaration
+     * object of its own source file, so that the parameters (base/) need
+     * not know the families, which are above them. declare() calls it in
+     * the current subsection of @p prm; a family that registered nothing
+     * declares nothing.
+     */
+    using Declare = std::function<void(ParameterHandler &)>;
+    void
+    declare(const Family family, ParameterHandler &prm);
+
+    /** Registers @p declare as the declaration of @p family on
+     * construction. */
+    struct Declaration
+    {
+      Declaration(const Family family, const Declare &declare);
     };
   } // namespace Plugins
 } // namespace Signorini

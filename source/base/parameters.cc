@@ -4,12 +4,10 @@
 // files: parameters_input.cc).
 #include <deal.II/base/utilities.h>
 
-#include <signorini/contact/obstacles/interface.h>
-#include <signorini/core/input_checks.h>
-#include <signorini/core/parameters.h>
-#include <signorini/core/shared_libraries.h>
-#include <signorini/material/interface.h>
-#include <signorini/postprocess/interface.h>
+#include <signorini/base/input_checks.h>
+#include <signorini/base/parameters.h>
+#include <signorini/base/plugins.h>
+#include <signorini/base/shared_libraries.h>
 
 #include "parameters_helpers.h"
 
@@ -117,7 +115,7 @@ namespace Signorini
                       "this material (e.g. its weight, density times "
                       "gravity): Dimension expressions separated by ';' "
                       "(extra ones ignored), functions of x, y, z and t.");
-    Material::declare_model_parameters(prm);
+    Plugins::declare(Plugins::Family::material, prm);
   }
 
 
@@ -517,7 +515,7 @@ namespace Signorini
                       verbosities.pattern(),
                       "quiet: summary only; normal: one block per load step; "
                       "verbose: every Newton iteration with its residuals.");
-    Postprocess::declare_parameters(prm);
+    Plugins::declare(Plugins::Family::postprocessor, prm);
     prm.leave_subsection();
   }
 

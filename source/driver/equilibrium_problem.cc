@@ -5,9 +5,9 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <signorini/base/errors.h>
 #include <signorini/contact/jacobian_check.h>
-#include <signorini/core/equilibrium_problem.h>
-#include <signorini/core/errors.h>
+#include <signorini/driver/equilibrium_problem.h>
 #include <signorini/solver/roundoff.h>
 
 #include <algorithm>

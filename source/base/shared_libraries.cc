@@ -1,6 +1,6 @@
 // User plug-in libraries loaded at run time (shared_libraries.h).
-#include <signorini/core/errors.h>
-#include <signorini/core/shared_libraries.h>
+#include <signorini/base/errors.h>
+#include <signorini/base/shared_libraries.h>
 
 #include <dlfcn.h>
 

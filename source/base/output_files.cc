@@ -1,7 +1,7 @@
 #include <deal.II/base/utilities.h>
 
-#include <signorini/core/errors.h>
-#include <signorini/postprocess/output_files.h>
+#include <signorini/base/errors.h>
+#include <signorini/base/output_files.h>
 
 #include <cerrno>
 #include <cstdio>

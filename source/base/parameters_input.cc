@@ -2,11 +2,9 @@
 // text.
 #include <deal.II/base/utilities.h>
 
-#include <signorini/contact/obstacles/interface.h>
-#include <signorini/core/input_checks.h>
-#include <signorini/core/parameters.h>
-#include <signorini/core/shared_libraries.h>
-#include <signorini/material/interface.h>
+#include <signorini/base/input_checks.h>
+#include <signorini/base/parameters.h>
+#include <signorini/base/shared_libraries.h>
 
 #include "parameters_helpers.h"
 

@@ -3,8 +3,8 @@
 // cycles within and between steps, the end of the run.
 #include <deal.II/base/utilities.h>
 
-#include <signorini/core/simulation.h>
-#include <signorini/postprocess/format.h>
+#include <signorini/base/format.h>
+#include <signorini/driver/simulation.h>
 
 #include <chrono>
 #include <iomanip>

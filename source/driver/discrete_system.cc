@@ -5,7 +5,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
-#include <signorini/core/discrete_system.h>
+#include <signorini/driver/discrete_system.h>
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/rtree.h>
 
-#include <signorini/core/errors.h>
-#include <signorini/core/simulation.h>
+#include <signorini/base/errors.h>
+#include <signorini/driver/simulation.h>
 #include <signorini/geometry/mesh_checks.h>
 
 #include <algorithm>

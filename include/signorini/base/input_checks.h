@@ -1,10 +1,10 @@
-#ifndef signorini_core_input_checks_h
-#define signorini_core_input_checks_h
+#ifndef signorini_base_input_checks_h
+#define signorini_base_input_checks_h
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/mpi.h>
 
-#include <signorini/core/parameters.h>
+#include <signorini/base/parameters.h>
 
 #include <iostream>
 #include <map>

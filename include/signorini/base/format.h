@@ -1,5 +1,5 @@
-#ifndef signorini_postprocess_format_h
-#define signorini_postprocess_format_h
+#ifndef signorini_base_format_h
+#define signorini_base_format_h
 
 #include <cmath>
 #include <iomanip>

@@ -2,8 +2,8 @@
 // shapes, meshes, ids and placement, and the refinement of the joined mesh.
 #include <deal.II/base/utilities.h>
 
-#include <signorini/core/input_checks.h>
-#include <signorini/core/parameters.h>
+#include <signorini/base/input_checks.h>
+#include <signorini/base/parameters.h>
 
 #include "parameters_helpers.h"
 

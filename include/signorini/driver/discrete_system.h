@@ -1,5 +1,5 @@
-#ifndef signorini_core_discrete_system_h
-#define signorini_core_discrete_system_h
+#ifndef signorini_driver_discrete_system_h
+#define signorini_driver_discrete_system_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/index_set.h>
