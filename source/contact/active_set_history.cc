@@ -419,6 +419,7 @@ namespace Signorini
       if (!previous)
         return now.active;
       return previous->active != now.active || previous->stick != now.stick ||
+             previous->saturated != now.saturated ||
              (now.active && !now.stick && !previous->stick &&
               previous->H * now.H < 0);
     }
@@ -449,8 +450,9 @@ namespace Signorini
       c.plain_violated = false;
       if (c.freeze && nf.active)
         {
-          used.frozen = true;
-          used.stick  = c.freeze_stick;
+          used.frozen    = true;
+          used.stick     = c.freeze_stick;
+          used.saturated = false;
           if (!c.freeze_stick)
             used.H = c.q;
           c.plain = nf;

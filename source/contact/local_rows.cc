@@ -13,6 +13,29 @@ namespace Signorini
 {
   namespace Contact
   {
+    namespace
+    {
+      // The row of a saturated pinned node (NodeFriction) along its held
+      // tangent a: a . Lambda - s (1 - (b . Lambda)^2)^(1/2), s = sign(a .
+      // H), and its gradient in Lambda (the root kept off zero, where the
+      // node is about to slide along b).
+      template <int dim>
+      std::pair<double, Tensor<1, dim - 1>>
+      saturated_row(const Tensor<1, dim - 1> &a,
+                    const NodeFriction<dim>  &nf,
+                    const Tensor<1, dim - 1> &L)
+      {
+        const auto       b     = free_tangent<dim>(a);
+        const double     s     = a * nf.H < 0 ? -1. : 1.;
+        const double     beta  = b * L;
+        constexpr double floor = 1e-8;
+        const double     c2    = 1. - beta * beta;
+        const double     c     = std::sqrt(std::max(c2, floor));
+        return {a * L - s * c, a + (c2 > floor ? s * beta / c : 0.) * b};
+      }
+    } // namespace
+
+
     template <int dim>
     void
     Assembler<dim>::local_residual(const ContactPoint                  &point,
@@ -80,8 +103,10 @@ namespace Signorini
       // others, in place of the point's rows): free (or zero threshold)
       // s Lambda_l; stick -mu lambda_l W_l (its weighted slip closed),
       // along a held tangent s Q Lambda_l instead; slip
-      // (mu lambda_l / rho_t) D_l (Lambda_l - q_l), q_l = H_l / |H_l|;
-      // each point adds its share w psi_l. The weight mu lambda_l is held
+      // (mu lambda_l / rho_t) D_l (Lambda_l - q_l), q_l = H_l / |H_l|; a
+      // saturated pinned node its stick rows along the free tangent, and
+      // (mu lambda_l / rho_t) D_l times its saturated row along the held
+      // one; each point adds its share w psi_l. The weight mu lambda_l is held
       // at the iterate (NodeData::row_lambda).
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
@@ -92,21 +117,29 @@ namespace Signorini
           const auto  &L  = e.node_data[l].Lambda;
           const auto  &Q  = face.held[l];
           // A pinned node's rows along Q are its pin's support force
-          // (Assembler::add_pin_rows, PinRows), not s Q Lambda.
-          const double sQ = face.pin[l] == numbers::invalid_dof_index ?
-                              law.free_friction_scale :
-                              0.;
+          // (Assembler::add_pin_rows, PinRows), not s Q Lambda, or,
+          // saturated, its saturated row.
+          const bool         pinned = face.pin[l] != numbers::invalid_dof_index;
+          const double       sQ     = pinned ? 0. : law.free_friction_scale;
+          Tensor<1, dim - 1> a;
+          double             saturated = 0;
+          if (nf.active && nf.saturated)
+            {
+              a         = surfaces.pins().at(face.pin[l]).a;
+              saturated = saturated_row(a, nf, L).first;
+            }
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
               double r_f = 0;
               if (!nf.active)
                 r_f = law.free_friction_scale * L[k];
-              else if (nf.stick)
+              else if (nf.stick || nf.saturated)
                 for (unsigned int j = 0; j < dim - 1; ++j)
                   r_f += ((k == j) - Q[k][j]) * -law.mu * lw * e.slip_t[j] +
                          sQ * Q[k][j] * L[j];
               else
                 r_f = law.mu * lw / law.rho_t * (L[k] - nf.H[k] / nf.H.norm());
+              r_f += law.mu * lw / law.rho_t * a[k] * saturated;
               if (!e.by_node)
                 F[o_f + l * (dim - 1) + k] = 0; // the node's row instead
               F[o_f + l * (dim - 1) + k] += -sf * w * psi_c[l] * r_f;
@@ -232,13 +265,12 @@ namespace Signorini
             }
           // The friction rows: their weight mu lambda_l is held, so they
           // have no lambda_l column.
-          if (nf.stick)
+          if (nf.stick || nf.saturated)
             {
               // Along a held tangent: s Q Lambda_l (a pin's: its support
-              // force, Assembler::add_pin_rows).
-              const double sQ = face.pin[l] == numbers::invalid_dof_index ?
-                                  law.free_friction_scale :
-                                  0.;
+              // force, Assembler::add_pin_rows, or its saturated row).
+              const bool   pinned = face.pin[l] != numbers::invalid_dof_index;
+              const double sQ     = pinned ? 0. : law.free_friction_scale;
               for (unsigned int k = 0; k < dim - 1; ++k)
                 for (unsigned int j = 0; j < dim - 1; ++j)
                   {
@@ -249,30 +281,32 @@ namespace Signorini
                                         (-law.mu * lw) *
                                         s.tangents[j][comp[a]] * Nd[a];
                   }
+              if (nf.saturated)
+                {
+                  const auto &a = surfaces.pins().at(face.pin[l]).a;
+                  const auto  g = saturated_row(a, nf, L).second;
+                  for (unsigned int k = 0; k < dim - 1; ++k)
+                    for (unsigned int j = 0; j < dim - 1; ++j)
+                      K(of + k, of + j) +=
+                        wl * law.mu * lw / law.rho_t * a[k] * g[j];
+                }
               continue;
             }
           // Slip: K_B = (I - q q) / |H|, dH/dLambda_l = I,
-          // dH/du = rho_t / D_l dW/du. Frozen in slip: q fixed, K_B = 0.
+          // dH/du = rho_t / D_l dW/du. Frozen in slip: q fixed, K_B = 0; a
+          // pinned node slides along its free tangent b, q = +-b whatever
+          // H: K_B = 0 too.
           const double       nH = nf.H.norm();
           Tensor<2, dim - 1> KB;
-          if (!nf.frozen)
+          if (!nf.frozen && face.pin[l] == numbers::invalid_dof_index)
             for (unsigned int k = 0; k < dim - 1; ++k)
               for (unsigned int kk = 0; kk < dim - 1; ++kk)
                 KB[k][kk] = ((k == kk) - nf.H[k] * nf.H[kk] / (nH * nH)) / nH;
-          // A pinned node's H has Lambda* in place of a . Lambda: dH/dLambda
-          // = I - Q, and dH/dlambda (NodeFriction::dH_dlambda).
-          const bool         pinned = face.pin[l] != numbers::invalid_dof_index;
-          Tensor<2, dim - 1> KB_L   = KB;
-          if (pinned)
-            KB_L = KB - KB * Q;
           for (unsigned int k = 0; k < dim - 1; ++k)
             {
               for (unsigned int kk = 0; kk < dim - 1; ++kk)
                 K(of + k, of + kk) +=
-                  wl * law.mu * lw / law.rho_t * ((k == kk) - KB_L[k][kk]);
-              if (pinned)
-                K(of + k, e.o_c + l) +=
-                  wl * law.mu * lw / law.rho_t * -(KB * nf.dH_dlambda)[k];
+                  wl * law.mu * lw / law.rho_t * ((k == kk) - KB[k][kk]);
               if (point.paired)
                 for (unsigned int a = 0; a < n_u; ++a)
                   {

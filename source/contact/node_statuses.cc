@@ -317,26 +317,14 @@ namespace Signorini
                     nf.H[k] = state[face.friction_dofs[l * (dim - 1) + k]] +
                               law.rho_t * sums.W[k][dof] / sums.D[dof];
                   if (face.pin[l] != numbers::invalid_dof_index)
-                    add_pin_demand(face, l, state, law.mu, sums, nf);
-                  nf.stick = nf.H.norm() <= 1. + stick_tie;
+                    decide_pinned(face, l, state, law.mu, sums, nf);
+                  else
+                    nf.stick = nf.H.norm() <= 1. + stick_tie;
                 }
               const bool  owned = surfaces.owned_multipliers().is_element(dof);
               const auto *previous = find_friction(dof);
-              auto        used     = history.node_anti_cycling(
+              const auto  used     = history.node_anti_cycling(
                 dof, nf, previous, new_iterate, owned, stats);
-              used.slip_gain = Tensor<1, dim - 1>();
-              if (dim == 3 && face.pin[l] != numbers::invalid_dof_index &&
-                  used.active && !used.stick && !used.frozen)
-                {
-                  // K_B = (I - q q) / |H|, q = H / |H|.
-                  const double nH = used.H.norm();
-                  for (unsigned int k = 0; k < dim - 1; ++k)
-                    for (unsigned int j = 0; j < dim - 1; ++j)
-                      used.slip_gain[k] +=
-                        -law.mu * state[dof] * sums.D[dof] *
-                        ((k == j) - used.H[k] * used.H[j] / (nH * nH)) / nH *
-                        used.dH_dr[j];
-                }
               if (owned &&
                   ActiveSetHistory<dim>::friction_status_differs(previous,
                                                                  used))
@@ -355,38 +343,49 @@ namespace Signorini
     // (the nodal rule: the node's own multipliers; exact at convergence,
     // where the gap is closed): Lambda* = (r_d - lambda A) / (mu lambda B).
     // It takes the place of a . Lambda in H: the node sticks while friction
-    // can carry that, and slides (the pin carrying the rest) otherwise;
-    // sliding (|Lambda| = 1), it sticks again when the pin would pull. With
-    // a . Lambda itself a saturated node sits on |H| = 1 and flips.
+    // can carry that (|H| <= 1). Otherwise Coulomb's law decides along the
+    // free tangent b alone, the only way the node can move (3D): it slides
+    // along b if |b . H| > 1, and its friction then opposes that slip,
+    // H = (b . H) b; else b sticks and its friction is saturated along a
+    // (NodeFriction). With a . Lambda itself in H a saturated node sits on
+    // |H| = 1 and flips.
     template <int dim>
     void
-    NodeStatuses<dim>::add_pin_demand(
-      const SlaveFace<dim>                &face,
-      const unsigned int                   l,
-      const TrilinosWrappers::MPI::Vector &state,
-      const double                         mu,
-      const NodeSums                      &sums,
-      NodeFriction<dim>                   &nf) const
+    NodeStatuses<dim>::decide_pinned(const SlaveFace<dim>                &face,
+                                     const unsigned int                   l,
+                                     const TrilinosWrappers::MPI::Vector &state,
+                                     const double                         mu,
+                                     const NodeSums                      &sums,
+                                     NodeFriction<dim> &nf) const
     {
       const auto  &pin    = surfaces.pins().at(face.pin[l]);
       const double lambda = state[pin.lambda];
       const double B      = sums.B[pin.lambda];
       const double r_d    = pin_loads.at(face.pin[l]);
-      nf.dH_dlambda       = Tensor<1, dim - 1>();
-      nf.dH_dr            = Tensor<1, dim - 1>();
-      if (std::abs(B) <= 1e-12 * sums.D[pin.lambda])
-        return;
-      const double demand =
-        (r_d - lambda * sums.A[pin.lambda]) / (mu * lambda * B);
-      double aL = 0;
-      for (unsigned int k = 0; k < dim - 1; ++k)
-        aL += pin.a[k] * state[face.friction_dofs[l * (dim - 1) + k]];
-      for (unsigned int k = 0; k < dim - 1; ++k)
+      if (std::abs(B) > 1e-12 * sums.D[pin.lambda])
         {
-          nf.H[k] += pin.a[k] * (demand - aL);
-          nf.dH_dlambda[k] = pin.a[k] * -r_d / (mu * lambda * lambda * B);
-          nf.dH_dr[k]      = pin.a[k] / (mu * lambda * B);
+          const double demand =
+            (r_d - lambda * sums.A[pin.lambda]) / (mu * lambda * B);
+          double aL = 0;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            aL += pin.a[k] * state[face.friction_dofs[l * (dim - 1) + k]];
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            nf.H[k] += pin.a[k] * (demand - aL);
         }
+      nf.stick = nf.H.norm() <= 1. + stick_tie;
+      if (nf.stick)
+        return;
+      if (dim == 3)
+        {
+          const auto   b  = free_tangent<dim>(pin.a);
+          const double bH = b * nf.H;
+          if (std::abs(bH) > 1. + stick_tie)
+            {
+              nf.H = bH * b;
+              return;
+            }
+        }
+      nf.saturated = true;
     }
 
 

@@ -20,28 +20,17 @@ namespace Signorini
     Assembler<dim>::find_sticking_pins()
     {
       stick_pins.clear();
-      slip_pins.clear();
       if (surfaces.pins().empty())
         return;
       // A node's status is known on the ranks that hold its faces, the
       // same on each: their union.
       std::vector<types::global_dof_index> known;
-      std::vector<std::pair<types::global_dof_index, std::vector<double>>>
-        sliding;
       for (const auto &[dof, pin] : surfaces.pins())
         if (const auto *f = node_statuses.find_friction(pin.lambda);
             f != nullptr && f->active && f->stick)
           known.push_back(dof);
-        else if (f != nullptr && f->active && f->slip_gain.norm() > 0)
-          sliding.emplace_back(dof,
-                               std::vector<double>(f->slip_gain.begin_raw(),
-                                                   f->slip_gain.end_raw()));
       for (const auto &from_rank : Utilities::MPI::all_gather(comm, known))
         stick_pins.insert(from_rank.begin(), from_rank.end());
-      for (const auto &from_rank : Utilities::MPI::all_gather(comm, sliding))
-        for (const auto &[dof, gain] : from_rank)
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            slip_pins[dof][k] = gain[k];
     }
 
 

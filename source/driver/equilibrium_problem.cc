@@ -510,23 +510,6 @@ namespace Signorini
               system.matrix.add(l, columns[j], pin.a[k] * values[j]);
           }
       }
-    // A sliding pinned node (3D): its H depends on r_d (Lambda*), so its
-    // slip rows have r_d's Jacobian row times slip_gain.
-    if (with_matrix)
-      for (const auto &[d, gain] : contact.sliding_pins())
-        if (system.locally_owned.is_element(d))
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            {
-              const types::global_dof_index l = pins.at(d).friction + k;
-              for (auto it = system.pin_rows.begin(d);
-                   it != system.pin_rows.end(d);
-                   ++it)
-                system.matrix.add(l, it->column(), gain[k] * it->value());
-              if (first_update)
-                system.newton_rhs.add(std::vector<types::global_dof_index>{l},
-                                      std::vector<double>{-gain[k] *
-                                                          system.pin_shift[d]});
-            }
   }
 
 

@@ -107,15 +107,6 @@ namespace Signorini
         return stick_pins;
       }
 
-      /** The pinned DoFs whose node slides at the last assemble() (3D),
-       * with NodeFriction::slip_gain: the factor of the bulk force r_d's
-       * Jacobian row in the node's rows (EquilibriumProblem adds it). */
-      const std::map<types::global_dof_index, Tensor<1, dim - 1>> &
-      sliding_pins() const
-      {
-        return slip_pins;
-      }
-
     private:
       // What one point computes on the way to its rows (helpers.h).
       struct PointEvaluation;
@@ -192,8 +183,7 @@ namespace Signorini
       const std::vector<bool> &newton_geometry_pair;
       MPI_Comm                 comm;
       // Written by assemble() (find_sticking_pins) only.
-      std::set<types::global_dof_index>                     stick_pins;
-      std::map<types::global_dof_index, Tensor<1, dim - 1>> slip_pins;
+      std::set<types::global_dof_index> stick_pins;
     };
   } // namespace Contact
 } // namespace Signorini

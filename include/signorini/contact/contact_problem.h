@@ -328,13 +328,6 @@ namespace Signorini
         return assembler.sticking_pins();
       }
 
-      /** Assembler::sliding_pins(). */
-      const std::map<types::global_dof_index, Tensor<1, dim - 1>> &
-      sliding_pins() const
-      {
-        return assembler.sliding_pins();
-      }
-
       /** Opaque copy of the per-point state (statuses, values, anti-cycling
        * history): trial evaluations (line search) restore it so that the
        * status history sees accepted iterates only. */

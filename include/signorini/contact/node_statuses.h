@@ -188,15 +188,15 @@ namespace Signorini
                       ContactStatistics                   &stats);
 
       /** Node @p l of @p face is pinned: its H takes Lambda*, the Lambda
-       * along the held tangent at which the pin carries nothing, and
-       * @p nf the derivatives of that (NodeFriction). */
+       * along the held tangent at which the pin carries nothing, and its
+       * status is one of the three of a pinned node (NodeFriction). */
       void
-      add_pin_demand(const SlaveFace<dim>                &face,
-                     const unsigned int                   l,
-                     const TrilinosWrappers::MPI::Vector &state,
-                     const double                         mu,
-                     const NodeSums                      &sums,
-                     NodeFriction<dim>                   &nf) const;
+      decide_pinned(const SlaveFace<dim>                &face,
+                    const unsigned int                   l,
+                    const TrilinosWrappers::MPI::Vector &state,
+                    const double                         mu,
+                    const NodeSums                      &sums,
+                    NodeFriction<dim>                   &nf) const;
 
       const Surfaces<dim> &surfaces;
       const Pairing<dim>  &pairing;

@@ -132,20 +132,42 @@ namespace Signorini
     // A node frozen by anti-cycling (frozen = true) keeps its stick or
     // slip status; frozen in slip, H holds the frozen unit direction and
     // the slip row does not depend on the node's H.
+    //
+    // A pinned node (theory.md F8, pins; a its held tangent, b the free
+    // one in 3D) has three statuses, from its H (whose a-part is Lambda*,
+    // the Lambda along a at which the pin carries nothing):
+    // stick (|H| <= 1): the pin carries nothing;
+    // saturated (|H| > 1, |b . H| <= 1): it sticks along b and its friction
+    // is saturated along a, a . Lambda = sign(a . H) (1 - (b .
+    // Lambda)^2)^(1/2), the pin carrying the rest (in 2D the only status
+    // besides stick); slip (|b . H| > 1): it slides along b, so Coulomb's law
+    // puts all of its friction against that slip, H = (b . H) b, and the pin
+    // carries the whole demand along a. Written by
+    // NodeStatuses::decide_friction().
     template <int dim>
     struct NodeFriction
     {
-      bool               active = false;
-      bool               stick  = false;
-      bool               frozen = false;
+      bool               active    = false;
+      bool               stick     = false;
+      bool               saturated = false;
+      bool               frozen    = false;
       Tensor<1, dim - 1> H;
-      // A pinned node (theory.md F8, pins): H takes Lambda* along its held
-      // tangent a, so dH/dlambda = a dLambda*/dlambda, and, sliding, its
-      // rows depend on the bulk force r_d at the pinned DoF through
-      // dH/dr_d = a dLambda*/dr_d: slip_gain = -mu lambda_w D K_B dH/dr_d
-      // is the factor of r_d's Jacobian row in its rows (zero in 2D).
-      Tensor<1, dim - 1> dH_dlambda, dH_dr, slip_gain;
     };
+    // The free tangent b of a pinned node whose held tangent is @p a (both
+    // in the node's frame): a turned by 90 degrees (3D; zero in 2D). Its
+    // sign does not matter where it is used.
+    template <int dim>
+    inline Tensor<1, dim - 1>
+    free_tangent(const Tensor<1, dim - 1> &a)
+    {
+      Tensor<1, dim - 1> b;
+      if constexpr (dim == 3)
+        {
+          b[0] = -a[1];
+          b[1] = a[0];
+        }
+      return b;
+    }
     // Anti-cycling of the friction status per node, as for points
     // (start_newton_solve()): the status of two iterates back, the cycles
     // and changes in this Newton solve, the freeze (stick, or slip along
