@@ -104,8 +104,20 @@ def absolute_paths(lines, directory):
     return out
 
 
-def remove_section(lines, name):
-    """The lines without the top-level subsection @name (all its blocks)."""
+def remove_section(lines, path):
+    """The lines without the subsection at @path ('A/B': subsection B of
+    the top-level subsection A; all its blocks)."""
     top = parse(lines)
-    top.items = [i for i in top.items if not (isinstance(i, Section) and i.name == name)]
+    parts = [p.strip() for p in path.split("/")]
+
+    def remove(section, parts):
+        if len(parts) == 1:
+            section.items = [i for i in section.items
+                             if not (isinstance(i, Section) and i.name == parts[0])]
+            return
+        for item in section.items:
+            if isinstance(item, Section) and item.name == parts[0]:
+                remove(item, parts[1:])
+
+    remove(top, parts)
     return write(top, [])

@@ -138,29 +138,6 @@ namespace Signorini
 
 
     // ------------------------------------------------------- expressions
-    // One expression entry of the input: where it is, its components and
-    // their names for the messages.
-    struct ExpressionInput
-    {
-      std::string              where;
-      std::vector<std::string> expressions;
-      std::vector<std::string> labels;
-      // The variable after x, y(, z): the time t, the refinement cycle of
-      // 'Refinement region', or none ("").
-      std::string time_variable = "t";
-    };
-
-    // Component names x, y, z (then numbers) for @p n expressions.
-    std::vector<std::string>
-    axis_labels(const unsigned int n)
-    {
-      std::vector<std::string> labels;
-      for (unsigned int i = 0; i < n; ++i)
-        labels.push_back(i < 3 ? std::string(1, "xyz"[i]) :
-                                 std::to_string(i + 1));
-      return labels;
-    }
-
     // muparser's message from deal.II's ExcParseError, whose "Column" is
     // muparser's error code, not a column: the text after "The parser
     // said:" (it gives the position).
@@ -287,41 +264,6 @@ namespace Signorini
                             pairs[k].obstacle_rotation,
                             axis_labels(pairs[k].obstacle_rotation.size())});
         }
-      const auto &ref = parameters.reference;
-      inputs.push_back(
-        {"subsection 'Reference solution', parameter 'Displacement'",
-         ref.displacement,
-         axis_labels(ref.displacement.size())});
-      ExpressionInput stress;
-      stress.where = "subsection 'Reference solution', parameter 'Stress'";
-      stress.expressions = ref.stress;
-      for (unsigned int i = 0; i < ref.stress.size(); ++i)
-        stress.labels.push_back(i < dim * dim ? std::string(1, "xyz"[i / dim]) +
-                                                  "xyz"[i % dim] :
-                                                std::to_string(i + 1));
-      inputs.push_back(stress);
-      inputs.push_back(
-        {"subsection 'Reference solution', parameter 'History quantity'",
-         ref.history,
-         {ref.history_name}});
-      // '*': a component the check leaves out.
-      std::vector<std::string> force = ref.contact_force;
-      for (auto &e : force)
-        if (Utilities::trim(e) == "*")
-          e = "0";
-      inputs.push_back(
-        {"subsection 'Reference solution', parameter 'Contact force'",
-         force,
-         axis_labels(force.size())});
-      for (const auto &[name, expression] :
-           {std::make_pair("Contact pressure", ref.contact_pressure),
-            std::make_pair("Maximum contact pressure", ref.max_pressure),
-            std::make_pair("Contact half-width", ref.half_width)})
-        if (!expression.empty())
-          inputs.push_back({"subsection 'Reference solution', parameter '" +
-                              std::string(name) + "'",
-                            {expression},
-                            {""}});
       inputs.push_back({"subsection 'Geometry', parameter 'Refinement region'",
                         {parameters.geometry.refinement_region},
                         {""},
@@ -494,16 +436,37 @@ namespace Signorini
   }
 
 
+  std::vector<std::string>
+  axis_labels(const unsigned int n)
+  {
+    std::vector<std::string> labels;
+    for (unsigned int i = 0; i < n; ++i)
+      labels.push_back(i < 3 ? std::string(1, "xyz"[i]) :
+                               std::to_string(i + 1));
+    return labels;
+  }
+
+
+  void
+  check_expressions(const std::vector<ExpressionInput> &inputs,
+                    const Parameters                   &parameters)
+  {
+    const auto &constants = parameters.boundary_conditions.constants;
+    for (const auto &input : inputs)
+      if (parameters.dimension == 2)
+        check_expression_input<2>(input, constants);
+      else
+        check_expression_input<3>(input, constants);
+  }
+
+
   void
   check_expressions(const Parameters &parameters)
   {
-    const auto &constants = parameters.boundary_conditions.constants;
-    if (parameters.dimension == 2)
-      for (const auto &input : expression_inputs<2>(parameters))
-        check_expression_input<2>(input, constants);
-    else
-      for (const auto &input : expression_inputs<3>(parameters))
-        check_expression_input<3>(input, constants);
+    check_expressions(parameters.dimension == 2 ?
+                        expression_inputs<2>(parameters) :
+                        expression_inputs<3>(parameters),
+                      parameters);
   }
 
 

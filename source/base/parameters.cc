@@ -1,7 +1,8 @@
 // The parameters of every subsection: declaration with patterns and
-// documentation, and parsing (geometry: parameters_geometry.cc; contact and
-// reference checks: parameters_contact.cc; consistency checks and reading
-// files: parameters_input.cc).
+// documentation, and parsing (geometry: parameters_geometry.cc; contact:
+// parameters_contact.cc; consistency checks and reading files:
+// parameters_input.cc). The references of the postprocessor 'reference
+// checks' are its own (postprocess/reference_parameters.h).
 #include <deal.II/base/utilities.h>
 
 #include <signorini/base/input_checks.h>
@@ -9,7 +10,7 @@
 #include <signorini/base/plugins.h>
 #include <signorini/base/shared_libraries.h>
 
-#include "parameters_helpers.h"
+#include <signorini/base/parameter_helpers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -680,7 +681,6 @@ namespace Signorini
     NewtonParameters::declare_parameters(prm);
     LinearSolverParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
-    ReferenceParameters::declare_parameters(prm);
   }
 
 
@@ -710,7 +710,6 @@ namespace Signorini
     newton.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
-    reference.parse_parameters(prm);
     check_consistency();
     check_expressions(*this);
   }

@@ -5,7 +5,7 @@
 #include <signorini/base/input_checks.h>
 #include <signorini/base/parameters.h>
 
-#include "parameters_helpers.h"
+#include <signorini/base/parameter_helpers.h>
 
 namespace Signorini
 {

@@ -6,7 +6,7 @@
 #include <signorini/base/parameters.h>
 #include <signorini/base/shared_libraries.h>
 
-#include "parameters_helpers.h"
+#include <signorini/base/parameter_helpers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -174,21 +174,6 @@ namespace Signorini
   {
     const unsigned int dim = dimension;
     check_boundary_conditions(boundary_conditions, dim);
-    if (!reference.displacement.empty() && reference.displacement.size() != dim)
-      throw InputError("subsection 'Reference solution', parameter "
-                       "'Displacement': give Dimension expressions.");
-    if (!reference.contact_force.empty() &&
-        reference.contact_force.size() != dim)
-      throw InputError("subsection 'Reference solution', parameter 'Contact "
-                       "force': give Dimension expressions of t separated by "
-                       "';' (the force components), or leave it empty.");
-    if (!reference.contact_force.empty() && contact.pairs.empty())
-      throw InputError("subsection 'Reference solution', parameter 'Contact "
-                       "force': the scene has no contact pair. Remove the "
-                       "reference or declare a pair in subsection 'Contact'.");
-    if (!reference.stress.empty() && reference.stress.size() != dim * dim)
-      throw InputError("subsection 'Reference solution', parameter 'Stress': "
-                       "give Dimension^2 expressions (row by row).");
     std::map<unsigned int, unsigned int> seen;
     for (unsigned int k = 0; k < materials.size(); ++k)
       if (!seen.emplace(materials[k].material_id, k).second)
@@ -451,6 +436,18 @@ namespace Signorini
         {"Obstacle normal",
          "it is 'Outward normal' in subsection 'Contact/Pair k/Plane' now: "
          "move the line there."}};
+      // Subsections that moved.
+      static const std::pair<const char *, const char *> moved_subsections[] = {
+        {"Reference solution",
+         "its entries are read by the postprocessor 'reference checks' "
+         "now, from its own subsection 'Output/Reference checks': move the "
+         "block into subsection 'Output' and rename it 'Reference "
+         "checks'."}};
+      for (const auto &[name, where_now] : moved_subsections)
+        if (message.find("no such subsection to be entered: " +
+                         std::string(name)) != std::string::npos)
+          return "Error in " + where + ": the subsection '" + name +
+                 "' moved: " + where_now;
       for (const auto &[name, where_now] : moved)
         if (message.find("No entry with name <" + std::string(name) + ">") !=
             std::string::npos)

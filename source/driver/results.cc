@@ -81,16 +81,11 @@ namespace Signorini
             failure = report.open_newton_history();
         }
       check_output(failure);
-      // Every point of 'Point values' lies in a body: found now, before a
-      // step is solved, not when the first step is written.
-      const auto &points = parameters.reference.point_values;
-      for (unsigned int k = 0; k < points.size(); ++k)
-        {
-          Point<dim> p;
-          for (unsigned int d = 0; d < dim && d < points[k].point.size(); ++d)
-            p[d] = points[k].point[d];
-          point_value(p, 0, k + 1);
-        }
+      // The postprocessors check their parameters against the scene now,
+      // before a step is solved.
+      const StepData<dim> data = step_data(0, 0., system.solution);
+      for (auto &postprocessor : postprocessors)
+        postprocessor->initialize(data);
     }
 
 
@@ -269,8 +264,7 @@ namespace Signorini
     template <int dim>
     double
     Results<dim>::point_value(const Point<dim>  &p,
-                              const unsigned int component,
-                              const unsigned int entry) const
+                              const unsigned int component) const
     {
       double value = 0;
       bool   found = false;
@@ -308,17 +302,40 @@ namespace Signorini
       if (owner == std::numeric_limits<unsigned int>::max())
         {
           std::ostringstream where;
-          where << "subsection 'Reference solution', parameter 'Point "
-                   "values': the point (";
+          where << "the point (";
           for (unsigned int d = 0; d < dim; ++d)
             where << (d ? ", " : "") << p[d];
-          where << ")"
-                << (entry > 0 ? " of entry " + std::to_string(entry) : "")
-                << " lies in no cell of the mesh. Give a point of a body.";
+          where << ") lies in no cell of the mesh.";
           throw InputError(where.str());
         }
       return Utilities::MPI::sum(rank == owner ? value : 0.,
                                  system.mpi_communicator);
+    }
+
+
+    template <int dim>
+    StepData<dim>
+    Results<dim>::step_data(const unsigned int                   step,
+                            const double                         time,
+                            const TrilinosWrappers::MPI::Vector &start)
+    {
+      return StepData<dim>{step,
+                           time,
+                           system.mpi_communicator,
+                           parameters,
+                           system.mapping,
+                           system.dof_handler,
+                           system.solution,
+                           start,
+                           materials,
+                           system.history,
+                           contact.active() ? &contact : nullptr,
+                           system.state,
+                           force_scale,
+                           [this](const Point<dim> &p, const unsigned int c) {
+                             return point_value(p, c);
+                           },
+                           postprocessor_columns};
     }
 
 
@@ -337,25 +354,8 @@ namespace Signorini
       TrilinosWrappers::MPI::Vector start(system.locally_owned,
                                           system.locally_relevant,
                                           system.mpi_communicator);
-      start = owned;
-      const StepData<dim> data{step,
-                               time,
-                               system.mpi_communicator,
-                               parameters,
-                               system.mapping,
-                               system.dof_handler,
-                               system.solution,
-                               start,
-                               materials,
-                               system.history,
-                               contact.active() ? &contact : nullptr,
-                               system.state,
-                               force_scale,
-                               [this](const Point<dim>  &p,
-                                      const unsigned int c) {
-                                 return point_value(p, c);
-                               },
-                               postprocessor_columns};
+      start                    = owned;
+      const StepData<dim> data = step_data(step, time, start);
       step_checks.clear();
       postprocessor_columns.clear();
       for (unsigned int i = 0; i < postprocessors.size(); ++i)

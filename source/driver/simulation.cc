@@ -152,36 +152,8 @@ namespace Signorini
           "') keeps a history at its quadrature points, which is carried "
           "to refined cells but cannot be merged into a coarsened one. Set "
           "'Coarsening fraction = 0'.");
-    check_history_reference();
   }
 
-
-  // 'Reference solution/History quantity' names a quantity that some
-  // material of the run has.
-  template <int dim>
-  void
-  Simulation<dim>::check_history_reference() const
-  {
-    const std::string &name = parameters.reference.history_name;
-    if (name.empty())
-      return;
-    std::set<std::string> names;
-    for (const auto &[id, material] : materials)
-      for (const auto &n : material->history_output_names())
-        names.insert(n);
-    if (names.count(name) != 0)
-      return;
-    std::string known;
-    for (const auto &n : names)
-      known += (known.empty() ? "" : ", ") + n;
-    throw InputError("subsection 'Reference solution', parameter 'History "
-                     "quantity': no material of the run has a history "
-                     "quantity '" +
-                     name + "'" +
-                     (known.empty() ? std::string(" (none has any)") :
-                                      " (they have: " + known + ")") +
-                     ". Correct the name or remove the reference.");
-  }
 
 
   template <int dim>

@@ -1,4 +1,5 @@
 #include <signorini/postprocess/interface.h>
+#include <signorini/postprocess/reference_parameters.h>
 
 #include <algorithm>
 
@@ -38,13 +39,24 @@ namespace Signorini
       const auto       &names = parameters.output.postprocessors;
       const std::string where =
         "subsection 'Output', parameter 'Postprocessors'";
-      if (parameters.reference.any() &&
-          std::find(names.begin(), names.end(), "reference checks") ==
-            names.end())
-        throw InputError(where +
-                         ": subsection 'Reference solution' gives references "
-                         "but 'reference checks' is not listed. Add it to the "
-                         "list, or delete the references.");
+      if (std::find(names.begin(), names.end(), "reference checks") ==
+          names.end())
+        {
+          // References given to a postprocessor that does not run would be
+          // a silent pass.
+          ReferenceParameters references;
+          prm.enter_subsection("Output");
+          prm.enter_subsection("Reference checks");
+          references.parse_parameters(prm, parameters);
+          prm.leave_subsection();
+          prm.leave_subsection();
+          if (references.any())
+            throw InputError(where +
+                             ": subsection 'Output/Reference checks' gives "
+                             "references but 'reference checks' is not "
+                             "listed. Add it to the list, or delete the "
+                             "references.");
+        }
       for (auto it = names.begin(); it != names.end(); ++it)
         if (std::find(it + 1, names.end(), *it) != names.end())
           throw InputError(where + ": '" + *it +

@@ -2,7 +2,7 @@
 #define signorini_source_postprocess_parsed_function_h
 
 // Private to source/postprocess/: the reference expressions of subsection
-// 'Reference solution' as functions of x, y(, z) and t. The expressions
+// 'Output/Reference checks' as functions of x, y(, z) and t. The expressions
 // were checked when the parameters were read (base/input_checks.cc).
 
 #include <deal.II/base/function_parser.h>
@@ -28,7 +28,7 @@ namespace Signorini
         return nullptr;
       return parse_function<dim>(expressions,
                                  constants,
-                                 "subsection 'Reference solution'");
+                                 "subsection 'Output/Reference checks'");
     }
   } // namespace Postprocess
 } // namespace Signorini

@@ -1,5 +1,5 @@
-// The postprocessor 'reference checks': every check of subsection
-// 'Reference solution' (doc/verification.md lists which test asserts
+// The postprocessor 'reference checks': every check of its subsection
+// 'Output/Reference checks' (doc/verification.md lists which test asserts
 // what), the bulk ones (SolutionErrors) and, with contact, the contact
 // ones (ContactChecks).
 #include <signorini/postprocess/contact_checks.h>
@@ -7,6 +7,8 @@
 #include <signorini/postprocess/solution_errors.h>
 
 #include <memory>
+#include <set>
+#include <string>
 
 namespace Signorini
 {
@@ -16,18 +18,57 @@ namespace Signorini
     class ReferenceChecks : public Interface<dim>
     {
     public:
-      // Its parameters are subsection 'Reference solution' (base/parameters).
       static void
-      declare_parameters(ParameterHandler &)
+      declare_parameters(ParameterHandler &prm)
       {
+        prm.enter_subsection("Reference checks");
+        ReferenceParameters::declare_parameters(prm);
+        prm.leave_subsection();
       }
 
       void
       parse_parameters(const Parameters &parameters,
-                       ParameterHandler &) override
+                       ParameterHandler &prm) override
       {
-        solution = std::make_unique<SolutionErrors<dim>>(parameters);
-        contact  = std::make_unique<ContactChecks<dim>>(parameters);
+        prm.enter_subsection("Reference checks");
+        try
+          {
+            reference.parse_parameters(prm, parameters);
+          }
+        catch (...)
+          {
+            prm.leave_subsection();
+            throw;
+          }
+        prm.leave_subsection();
+        solution = std::make_unique<SolutionErrors<dim>>(parameters, reference);
+        contact  = std::make_unique<ContactChecks<dim>>(parameters, reference);
+      }
+
+      // Every point of 'Point values' lies in a body, and 'History
+      // quantity' names a quantity some material of the run has.
+      void
+      initialize(const StepData<dim> &data) override
+      {
+        const auto &points = reference.point_values;
+        for (unsigned int k = 0; k < points.size(); ++k)
+          {
+            Point<dim> p;
+            for (unsigned int d = 0; d < dim && d < points[k].point.size(); ++d)
+              p[d] = points[k].point[d];
+            try
+              {
+                data.displacement_at(p, 0);
+              }
+            catch (const InputError &e)
+              {
+                throw InputError("subsection 'Output/Reference checks', "
+                                 "parameter 'Point values', entry " +
+                                 std::to_string(k + 1) + ": " + e.what() +
+                                 " Give a point of a body.");
+              }
+          }
+        check_history_quantity(data);
       }
 
       std::vector<CheckResult>
@@ -43,6 +84,31 @@ namespace Signorini
       }
 
     private:
+      void
+      check_history_quantity(const StepData<dim> &data) const
+      {
+        const std::string &name = reference.history_name;
+        if (name.empty())
+          return;
+        std::set<std::string> names;
+        for (const auto &[id, material] : data.materials)
+          for (const auto &n : material->history_output_names())
+            names.insert(n);
+        if (names.count(name) != 0)
+          return;
+        std::string known;
+        for (const auto &n : names)
+          known += (known.empty() ? "" : ", ") + n;
+        throw InputError("subsection 'Output/Reference checks', parameter "
+                         "'History quantity': no material of the run has a "
+                         "history quantity '" +
+                         name + "'" +
+                         (known.empty() ? std::string(" (none has any)") :
+                                          " (they have: " + known + ")") +
+                         ". Correct the name or remove the reference.");
+      }
+
+      ReferenceParameters                  reference;
       std::unique_ptr<SolutionErrors<dim>> solution;
       std::unique_ptr<ContactChecks<dim>>  contact;
     };
@@ -52,4 +118,5 @@ namespace Signorini
 SIGNORINI_REGISTER_POSTPROCESSOR(
   Signorini::Postprocess::ReferenceChecks,
   "reference checks",
-  "the checks of subsection 'Reference solution' against its references")
+  "the checks of its subsection 'Reference checks' against exact solutions "
+  "and closed forms")

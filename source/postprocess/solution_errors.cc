@@ -38,13 +38,15 @@ namespace Signorini
 
 
     template <int dim>
-    SolutionErrors<dim>::SolutionErrors(const Parameters &parameters)
+    SolutionErrors<dim>::SolutionErrors(const Parameters          &parameters,
+                                        const ReferenceParameters &reference)
         : parameters(parameters)
-        , u_exact(parsed<dim>(parameters.reference.displacement,
+        , reference(reference)
+        , u_exact(parsed<dim>(reference.displacement,
                               parameters.boundary_conditions.constants))
-        , s_exact(parsed<dim>(parameters.reference.stress,
+        , s_exact(parsed<dim>(reference.stress,
                               parameters.boundary_conditions.constants))
-        , h_exact(parsed<dim>(parameters.reference.history,
+        , h_exact(parsed<dim>(reference.history,
                               parameters.boundary_conditions.constants))
     {
     }
@@ -63,10 +65,9 @@ namespace Signorini
           const double max_error   = Utilities::MPI::max(error, comm);
           const double max_norm    = Utilities::MPI::max(norm, comm);
           results.push_back(
-            relative_error(parameters.reference.history_name +
-                             " max relative error",
+            relative_error(reference.history_name + " max relative error",
                            max_norm > 0 ? max_error / max_norm : max_error,
-                           parameters.reference.tolerance));
+                           reference.tolerance));
         }
       if (!u_exact && !s_exact)
         return results;
@@ -80,7 +81,7 @@ namespace Signorini
       s.u_norm2              = Utilities::MPI::sum(s.u_norm2, comm);
       s.s_error_max          = Utilities::MPI::max(s.s_error_max, comm);
       s.s_norm_max           = Utilities::MPI::max(s.s_norm_max, comm);
-      const double tolerance = parameters.reference.tolerance;
+      const double tolerance = reference.tolerance;
       if (u_exact)
         results.push_back(relative_error("displacement L2 relative error",
                                          s.u_norm2 > 0 ?
@@ -210,7 +211,7 @@ namespace Signorini
                               data.dof_handler.get_fe(),
                               points,
                               update_quadrature_points);
-      const std::string     &name  = parameters.reference.history_name;
+      const std::string     &name  = reference.history_name;
       double                 error = 0, norm = 0;
       for (const auto &cell : data.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())

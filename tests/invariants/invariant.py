@@ -41,7 +41,7 @@ In --set values, '{R a, b}' is the vector (a, b) turned by --rotate, and
 displacement in the turned frame).
 
 The solver counts (Newton iterations, cuts, cycles) are not compared:
-the variants change the path, not the answer. --no-references drops the base's 'Reference solution' (its
+the variants change the path, not the answer. --no-references drops the base's 'Output/Reference checks' (its
 closed forms hold at the end of the path only, and the variant's path
 differs) before the --base-set entries are applied. Prints every compared column with its largest difference and
 exits 0 only if all are within bounds. The prm editing is the only thing
@@ -248,7 +248,7 @@ def main():
     base_dir = os.path.dirname(os.path.abspath(a.base))
     base_lines = absolute_paths(open(a.base).read().splitlines(), base_dir)
     if a.no_references:
-        base_lines = remove_section(base_lines, "Reference solution")
+        base_lines = remove_section(base_lines, "Output/Reference checks")
     base_lines = edit_prm(base_lines, a.base_set)
     dim = 2
     for line in base_lines:

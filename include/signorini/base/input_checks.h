@@ -97,6 +97,28 @@ namespace Signorini
   void
   check_expressions(const Parameters &parameters);
 
+  /** One expression entry of a parameter file: where it is (subsection
+   * and parameter, for the message), its components and their names. */
+  struct ExpressionInput
+  {
+    std::string              where;
+    std::vector<std::string> expressions;
+    std::vector<std::string> labels;
+    // The variable after x, y(, z): the time t, the refinement cycle of
+    // 'Refinement region', or none ("").
+    std::string time_variable = "t";
+  };
+
+  /** Component names x, y, z (then numbers) for @p n expressions. */
+  std::vector<std::string>
+  axis_labels(const unsigned int n);
+
+  /** check_expressions() for the entries @p inputs of a plug-in's own
+   * parameters, with the 'Function constants' of @p parameters. */
+  void
+  check_expressions(const std::vector<ExpressionInput> &inputs,
+                    const Parameters                   &parameters);
+
   /**
    * Refuses an output directory that is empty, exists as something other
    * than a directory, cannot be created or is not writable. Checked (and

@@ -285,56 +285,6 @@ namespace Signorini
     parse_parameters(ParameterHandler &prm);
   };
 
-  /** Optional exact solution the run compares itself against (verification). */
-  struct ReferenceParameters
-  {
-    std::vector<std::string> displacement; // empty: no reference
-    std::vector<std::string> stress;       // dim*dim expressions, row-major
-    std::string              history_name; // a history quantity, or empty
-    std::vector<std::string> history;      // its expression (one or none)
-    double                   tolerance;
-    // Contact checks (0 / empty: not checked). p0 and a: expressions of t
-    // ("" when not checked).
-    std::string         max_pressure;
-    double              pressure_tolerance;
-    double              friction_ratio, friction_ratio_tolerance;
-    double              friction_ratio_from; // first time checked
-    std::vector<double> friction_ratio_normal;
-    bool                friction_ratio_contact_frame;
-    double              force_variation_tolerance; // 0: not checked
-    bool                cattaneo_mindlin;          // stick zone check
-    std::string         half_width;
-    double              half_width_tolerance;
-    std::vector<double> contact_centre;
-    std::string         contact_pressure;
-    double              pressure_l2_tolerance;
-    struct PointValue
-    {
-      std::vector<double> point;
-      unsigned int        component;
-      double              value;
-      double              tolerance; // relative
-    };
-    std::vector<PointValue>  point_values;
-    double                   point_value_tolerance;
-    double                   point_values_from;         // first time checked
-    double                   action_reaction_tolerance; // 0: not checked
-    double                   slip_law_tolerance;        // 0: not checked
-    std::vector<std::string> contact_force;             // empty: not checked
-    double                   contact_force_tolerance;
-    double                   contact_force_from; // first time checked
-    double                   gap_tolerance;      // 0: not checked
-
-    /** Some reference is given (a check is asked for). */
-    bool
-    any() const;
-
-    static void
-    declare_parameters(ParameterHandler &prm);
-    void
-    parse_parameters(ParameterHandler &prm);
-  };
-
   /** One contact pair (subsection Contact/Pair k), theory.md F2. */
   struct ContactPairParameters
   {
@@ -421,7 +371,6 @@ namespace Signorini
     NewtonParameters                newton;
     LinearSolverParameters          linear_solver;
     OutputParameters                output;
-    ReferenceParameters             reference;
     std::string input_directory = "."; // for relative mesh paths
     // The parameter file read (empty: parameters from a string); the
     // parameter echo must not overwrite it.

@@ -46,7 +46,8 @@ namespace Signorini
               ConditionalOStream                  &sout);
 
       /** The output directory: earlier results removed, parameters
-       * echoed, newton_history.csv started. */
+       * echoed, newton_history.csv started; then each postprocessor's
+       * initialize() with the initial state. */
       void
       prepare_output();
 
@@ -77,12 +78,15 @@ namespace Signorini
       void
       check_force_balance();
       /** Displacement component at a point of a body; an InputError
-       * naming the point (and its entry @p entry of 'Point values', if
-       * > 0) if no cell holds it. */
+       * naming the point if no cell holds it. */
       double
-      point_value(const Point<dim>  &p,
-                  const unsigned int component,
-                  const unsigned int entry = 0) const;
+      point_value(const Point<dim> &p, const unsigned int component) const;
+      /** What the postprocessors see of step @p step at @p time, the
+       * displacement at the step's start @p start (ghosted). */
+      StepData<dim>
+      step_data(const unsigned int                   step,
+                const double                         time,
+                const TrilinosWrappers::MPI::Vector &start);
       void
       run_postprocessors(const unsigned int step, const double time);
       /** The step's report on screen; returns its statistics.csv lines. */

@@ -108,8 +108,6 @@ namespace Signorini
     void
     check_input_against_mesh() const;
     void
-    check_history_reference() const;
-    void
     setup_system();
     void
     print_setup();

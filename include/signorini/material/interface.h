@@ -290,7 +290,7 @@ namespace Signorini
       }
 
       /** Scalar quantities of the history, by name, for output (cell means
-       * in the VTU files) and for 'Reference solution/History quantity'.
+       * in the VTU files) and for 'Output/Reference checks/History quantity'.
        * Default: none. */
       virtual std::vector<std::string>
       history_output_names() const

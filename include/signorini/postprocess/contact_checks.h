@@ -9,6 +9,7 @@
 #include <signorini/base/parameters.h>
 #include <signorini/contact/contact_problem.h>
 #include <signorini/postprocess/interface.h>
+#include <signorini/postprocess/reference_parameters.h>
 
 #include <array>
 #include <functional>
@@ -18,10 +19,10 @@
 #include <vector>
 
 /**
- * The contact checks of subsection 'Reference solution' (doc/verification.md
- * lists which test asserts what): after each written load step, each
- * computed quantity against its reference with a tolerance, as a structured
- * result.
+ * The contact checks of subsection 'Output/Reference checks'
+ * (doc/verification.md lists which test asserts what): after each written load
+ * step, each computed quantity against its reference with a tolerance, as a
+ * structured result.
  *
  * Against references: the largest pressure p0, the contact half-width a,
  * the pressure profile (relative L2 error), the stick zone of
@@ -42,7 +43,8 @@ namespace Signorini
     class ContactChecks
     {
     public:
-      explicit ContactChecks(const Parameters &parameters);
+      ContactChecks(const Parameters          &parameters,
+                    const ReferenceParameters &reference);
 
       /**
        * The checks of the written step @p data (with its contact problem:
@@ -70,9 +72,9 @@ namespace Signorini
 
       // One function per check (see the class documentation).
       CheckResult
-      check_max_pressure(const Records &records, const double reference) const;
+      check_max_pressure(const Records &records, const double exact) const;
       CheckResult
-      check_half_width(const Records &records, const double reference) const;
+      check_half_width(const Records &records, const double exact) const;
       CheckResult
       check_pressure_profile(const Records &records, const double time) const;
       CheckResult
@@ -102,6 +104,7 @@ namespace Signorini
       is_last_step(const double time) const;
 
       const Parameters                    &parameters;
+      const ReferenceParameters           &reference;
       std::unique_ptr<FunctionParser<dim>> exact_pressure, exact_force;
       // p0 and a, expressions of t (nullptr: not checked).
       std::unique_ptr<FunctionParser<dim>> exact_p0, exact_a;

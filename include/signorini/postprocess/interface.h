@@ -42,8 +42,8 @@ namespace Signorini
    * 'Output', named after it, capitalised), registered in its source file
    * with SIGNORINI_REGISTER_POSTPROCESSOR(Class, "name", "description"),
    * and listed by name in 'Output/Postprocessors' (doc/extending.md). The
-   * library registers 'reference checks': the checks of subsection
-   * 'Reference solution'.
+   * library registers 'reference checks': the checks of its subsection
+   * 'Output/Reference checks' against exact solutions and closed forms.
    */
   namespace Postprocess
   {
@@ -167,6 +167,17 @@ namespace Signorini
         (void)prm;
       }
 
+      /** Before the first load step is solved, on every rank, with the
+       * initial state (step 0): where the postprocessor checks its
+       * parameters against the scene (a point in a body, a quantity some
+       * material has), so that a wrong one stops the run before a step is
+       * solved. */
+      virtual void
+      initialize(const StepData<dim> &data)
+      {
+        (void)data;
+      }
+
       /** After each written load step, on every rank. */
       virtual std::vector<CheckResult>
       execute(const StepData<dim> &data) = 0;
@@ -183,8 +194,8 @@ namespace Signorini
 
     /** The postprocessors listed in 'Output/Postprocessors', in that
      * order, with their parameters read. Throws InputError where subsection
-     * 'Reference solution' gives references that no listed postprocessor
-     * checks. */
+     * 'Output/Reference checks' gives references but 'reference checks' is
+     * not listed. */
     template <int dim>
     std::vector<std::unique_ptr<Interface<dim>>>
     make_postprocessors(const Parameters &parameters, ParameterHandler &prm);

@@ -5,6 +5,7 @@
 
 #include <signorini/base/parameters.h>
 #include <signorini/postprocess/interface.h>
+#include <signorini/postprocess/reference_parameters.h>
 
 #include <memory>
 #include <vector>
@@ -16,7 +17,7 @@ namespace Signorini
     using namespace dealii;
 
     /**
-     * The bulk checks of subsection 'Reference solution': the displacement
+     * The bulk checks of subsection 'Output/Reference checks': the displacement
      * against 'Displacement' (relative L2 error over the bodies) and the
      * stress against 'Stress' (largest pointwise error over the largest
      * reference stress, at the Gauss points of degree + 2), each against
@@ -30,7 +31,8 @@ namespace Signorini
     class SolutionErrors
     {
     public:
-      explicit SolutionErrors(const Parameters &parameters);
+      SolutionErrors(const Parameters          &parameters,
+                     const ReferenceParameters &reference);
 
       /** The checks of the step (none without references). */
       std::vector<CheckResult>
@@ -49,6 +51,7 @@ namespace Signorini
       local_history_error(const StepData<dim> &data) const;
 
       const Parameters                    &parameters;
+      const ReferenceParameters           &reference;
       std::unique_ptr<FunctionParser<dim>> u_exact, s_exact, h_exact;
     };
   } // namespace Postprocess

@@ -1,8 +1,9 @@
-#ifndef signorini_source_base_parameters_helpers_h
-#define signorini_source_base_parameters_helpers_h
+#ifndef signorini_base_parameter_helpers_h
+#define signorini_base_parameter_helpers_h
 
-// Helpers shared by the source files of the parameters (private to
-// source/base/).
+// Helpers for reading parameters: the parameters of base/ and the
+// parameters a plug-in declares and reads itself (numbers, points,
+// components, selections).
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
