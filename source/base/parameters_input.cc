@@ -343,6 +343,76 @@ namespace Signorini
         }
     }
 
+
+    // Entries removed when their choice was decided (one default per
+    // choice, doc/theory.md): what the run does instead.
+    const std::pair<const char *, const char *> removed[] = {
+      {"Penalty",
+       "the penalty law went; contact is always the augmented Lagrangian "
+       "law."},
+      {"Threshold coupling",
+       "the friction rows are weighted by the pressure of the Newton "
+       "iterate, held: no K_fc (doc/theory.md 3.2)."},
+      {"Release extrapolation", "release extrapolation is always on."},
+      {"Pairing at status changes",
+       "the pairing is renewed between Newton solves only."},
+      {"Statuses",
+       "the integration-point rules decide the statuses per multiplier "
+       "node on meshed masters (the nodal rule and rigid obstacles: one "
+       "law per node)."},
+      {"Friction threshold",
+       "the friction threshold is always the current contact pressure "
+       "(Newton on the threshold)."},
+      {"Freeze after cycles",
+       "a contact point is frozen after 3 status cycles in one Newton "
+       "solve."},
+      {"Segment order",
+       "the mortar rule always uses the order exact for flat faces."},
+      {"Normal",
+       "the contact normal is always the master's (the slave and average "
+       "normals failed action = reaction and gap checks)."},
+      {"Write VTU",
+       "the VTU files are written by the postprocessor 'visualization': "
+       "list it in 'Output/Postprocessors' (it is in the default list) or "
+       "leave it out."},
+      {"Force balance tolerance",
+       "the balance of the contact forces is checked by 'Action-reaction "
+       "tolerance' in the same subsection (action = reaction of each "
+       "pair), and the support reactions by the force balance of the "
+       "bodies, which every run checks."},
+      {"Friction status",
+       "stick and slip are always decided per multiplier node on meshed "
+       "masters (the former 'Friction status = node'); the nodal rule and "
+       "rigid obstacles keep one law per node."},
+      {"Stagnation tolerance",
+       "the round-off floor of Newton's residual is computed from the size "
+       "of its terms; 'Newton/Relative tolerance' and 'Newton/Absolute "
+       "tolerance' set the convergence."},
+      {"Geometric linearisation",
+       "frictionless rigid obstacles are always linearised in Newton "
+       "(projection, normal and curvature at every iterate); frictional "
+       "pairs and meshed masters are paired again by the geometric loop."}};
+    // Entries that moved to another subsection.
+    const std::pair<const char *, const char *> moved[] = {
+      {"Body force",
+       "it is set per material now: move the line into subsection "
+       "'Materials/Material k' of each material it acts on."},
+      {"Obstacle point",
+       "a rigid obstacle reads its data from its own subsection of "
+       "'Contact/Pair k': 'Point' in subsection 'Plane', 'Centre' in "
+       "'Sphere', 'Axis point' in 'Cylinder'. Move the line there."},
+      {"Obstacle normal",
+       "it is 'Outward normal' in subsection 'Contact/Pair k/Plane' now: "
+       "move the line there."}};
+    // Subsections that moved.
+    const std::pair<const char *, const char *> moved_subsections[] = {
+      {"Reference solution",
+       "its entries are read by the postprocessor 'reference checks' "
+       "now, from its own subsection 'Output/Reference checks': move the "
+       "block into subsection 'Output' and rename it 'Reference "
+       "checks'."}};
+
+
     // Turn deal.II's parse exception into one message naming line and
     // subsection, with a hint for the cases users hit most.
     std::string
@@ -376,73 +446,6 @@ namespace Signorini
       message = std::regex_replace(message,
                                    std::regex("The line <[^\n]*?> could not"),
                                    "This line could not");
-      // Entries removed when their choice was decided (one default per
-      // choice, doc/theory.md): what the run does instead.
-      static const std::pair<const char *, const char *> removed[] = {
-        {"Penalty",
-         "the penalty law went; contact is always the augmented Lagrangian "
-         "law."},
-        {"Threshold coupling",
-         "the friction rows are weighted by the pressure of the Newton "
-         "iterate, held: no K_fc (doc/theory.md 3.2)."},
-        {"Release extrapolation", "release extrapolation is always on."},
-        {"Pairing at status changes",
-         "the pairing is renewed between Newton solves only."},
-        {"Statuses",
-         "the integration-point rules decide the statuses per multiplier "
-         "node on meshed masters (the nodal rule and rigid obstacles: one "
-         "law per node)."},
-        {"Friction threshold",
-         "the friction threshold is always the current contact pressure "
-         "(Newton on the threshold)."},
-        {"Freeze after cycles",
-         "a contact point is frozen after 3 status cycles in one Newton "
-         "solve."},
-        {"Segment order",
-         "the mortar rule always uses the order exact for flat faces."},
-        {"Normal",
-         "the contact normal is always the master's (the slave and average "
-         "normals failed action = reaction and gap checks)."},
-        {"Write VTU",
-         "the VTU files are written by the postprocessor 'visualization': "
-         "list it in 'Output/Postprocessors' (it is in the default list) or "
-         "leave it out."},
-        {"Force balance tolerance",
-         "the balance of the contact forces is checked by 'Action-reaction "
-         "tolerance' in the same subsection (action = reaction of each "
-         "pair), and the support reactions by the force balance of the "
-         "bodies, which every run checks."},
-        {"Friction status",
-         "stick and slip are always decided per multiplier node on meshed "
-         "masters (the former 'Friction status = node'); the nodal rule and "
-         "rigid obstacles keep one law per node."},
-        {"Stagnation tolerance",
-         "the round-off floor of Newton's residual is computed from the size "
-         "of its terms; 'Newton/Relative tolerance' and 'Newton/Absolute "
-         "tolerance' set the convergence."},
-        {"Geometric linearisation",
-         "frictionless rigid obstacles are always linearised in Newton "
-         "(projection, normal and curvature at every iterate); frictional "
-         "pairs and meshed masters are paired again by the geometric loop."}};
-      // Entries that moved to another subsection.
-      static const std::vector<std::pair<const char *, const char *>> moved = {
-        {"Body force",
-         "it is set per material now: move the line into subsection "
-         "'Materials/Material k' of each material it acts on."},
-        {"Obstacle point",
-         "a rigid obstacle reads its data from its own subsection of "
-         "'Contact/Pair k': 'Point' in subsection 'Plane', 'Centre' in "
-         "'Sphere', 'Axis point' in 'Cylinder'. Move the line there."},
-        {"Obstacle normal",
-         "it is 'Outward normal' in subsection 'Contact/Pair k/Plane' now: "
-         "move the line there."}};
-      // Subsections that moved.
-      static const std::pair<const char *, const char *> moved_subsections[] = {
-        {"Reference solution",
-         "its entries are read by the postprocessor 'reference checks' "
-         "now, from its own subsection 'Output/Reference checks': move the "
-         "block into subsection 'Output' and rename it 'Reference "
-         "checks'."}};
       for (const auto &[name, where_now] : moved_subsections)
         if (message.find("no such subsection to be entered: " +
                          std::string(name)) != std::string::npos)

@@ -46,7 +46,6 @@ namespace Signorini
       const auto        &face  = surfaces.slave_faces()[point.face];
       const unsigned int p     = face.pair;
       const auto        &r     = e.r;
-      const auto        &law   = e.law;
       const auto        &psi   = point.psi;
       const auto        &psi_c = point.psi_lambda;
       const unsigned int n_e = e.n_e, n_m = e.n_m, n_l = e.n_l;
@@ -99,6 +98,22 @@ namespace Signorini
           for (unsigned int k = 0; k < (e.fric ? dim - 1 : 0); ++k)
             F[o_f + l * (dim - 1) + k] = -sf * w * psi[l] * r.r_f[k];
         }
+      add_node_friction_rows(point, e, F);
+    }
+
+
+    template <int dim>
+    void
+    Assembler<dim>::add_node_friction_rows(const ContactPoint    &point,
+                                           const PointEvaluation &e,
+                                           Vector<double>        &F) const
+    {
+      const auto        &face  = surfaces.slave_faces()[point.face];
+      const auto        &law   = e.law;
+      const auto        &psi_c = point.psi_lambda;
+      const double       w     = point.weight;
+      const double       sf    = coefficients.tangential(face.pair);
+      const unsigned int o_f   = e.o_f;
       // Friction rows per node (node-status pairs; the held nodes of the
       // others, in place of the point's rows): free (or zero threshold)
       // s Lambda_l; stick -mu lambda_l W_l (its weighted slip closed),
@@ -218,7 +233,7 @@ namespace Signorini
                                                const PointEvaluation &e,
                                                FullMatrix<double>    &K) const
     {
-      const unsigned int p     = surfaces.slave_faces()[point.face].pair;
+      const auto        &face  = surfaces.slave_faces()[point.face];
       const auto        &law   = e.law;
       const auto        &s     = e.s;
       const auto        &psi_c = point.psi_lambda;
@@ -226,9 +241,7 @@ namespace Signorini
       const auto        &comp  = e.comp;
       const unsigned int n_u   = e.n_e + e.n_m;
       const double       w     = point.weight;
-      const double       sf =
-        coefficients.tangential(p); // row scaling of Lambda rows
-      const auto &face = surfaces.slave_faces()[point.face];
+      const double       sf    = coefficients.tangential(face.pair);
       for (unsigned int l = 0; l < e.node_data.size(); ++l)
         {
           if (!e.node_data[l].status)

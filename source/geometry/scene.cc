@@ -11,6 +11,8 @@
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
 
+#include "shapes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -27,27 +29,7 @@ namespace Signorini
   {
     namespace
     {
-      std::string
-      body_name(const unsigned int b)
-      {
-        return "subsection 'Geometry/Body " + std::to_string(b + 1) + "'";
-      }
-
-      template <int dim>
-      Point<dim>
-      point_of(const std::vector<double> &v,
-               const unsigned int         b,
-               const std::string         &entry)
-      {
-        // Entries default to 3 numbers; use the first dim of them.
-        if (v.size() < dim)
-          throw InputError(body_name(b) + ", parameter '" + entry + "': give " +
-                           std::to_string(dim) + " coordinates.");
-        Point<dim> p;
-        for (unsigned int d = 0; d < dim; ++d)
-          p[d] = v[d];
-        return p;
-      }
+      using namespace internal;
 
       // The body's rotation ('Rotation angle' about 'Rotation axis' through
       // 'Rotation centre'): of points, and of directions.
@@ -141,139 +123,6 @@ namespace Signorini
           }
       }
 
-      // The user-visible id of face group @p local of body @p b: 10 (b + 1)
-      // + local, or the body's 'Boundary ids' entry.
-      types::boundary_id
-      boundary_id_of(const BodyParameters &body,
-                     const unsigned int    b,
-                     const unsigned int    local)
-      {
-        return body.boundary_ids.empty() ? 10 * (b + 1) + local :
-                                           body.boundary_ids[local];
-      }
-
-      // Gives the faces of a generated shape their user-visible ids.
-      template <int dim>
-      void
-      assign_boundary_ids(Triangulation<dim>   &tria,
-                          const BodyParameters &body,
-                          const unsigned int    b,
-                          const unsigned int    n_faces)
-      {
-        if (!body.boundary_ids.empty() && body.boundary_ids.size() < n_faces)
-          throw InputError(body_name(b) +
-                           ", parameter 'Boundary ids': this "
-                           "shape has " +
-                           std::to_string(n_faces) + " face groups, give " +
-                           std::to_string(n_faces) +
-                           " ids (or leave it empty).");
-        for (const auto &face : tria.active_face_iterators())
-          if (face->at_boundary())
-            {
-              face->set_boundary_id(
-                boundary_id_of(body, b, face->boundary_id()));
-            }
-      }
-
-      // Number of face groups of a ball segment (see make_ball_segment).
-      unsigned int
-      n_segment_faces(const Segment segment, const unsigned int dim)
-      {
-        return segment == Segment::full ? 1 :
-               segment == Segment::half ? 2 :
-                                          (dim == 2 ? 3 : 4);
-      }
-
-      // The local face group of the inner curved face of a hollow segment:
-      // after the flat faces of a ball segment, after the end caps of a 3D
-      // cylinder segment; numbers::invalid_unsigned_int for a solid one.
-      unsigned int
-      inner_face_group(const BodyParameters &body, const unsigned int dim)
-      {
-        if (body.inner_radius == 0)
-          return numbers::invalid_unsigned_int;
-        return (dim == 3 && body.shape == BodyShape::cylinder_segment) ?
-                 5 :
-                 n_segment_faces(body.segment, dim);
-      }
-
-      // deal.II's disc/ball or shell segment: halves cut at x = 0 (kept
-      // x > 0), quarters in the positive quadrant/octant, centred at 0.
-      template <int dim>
-      void
-      make_deal_ii_segment(Triangulation<dim> &tria,
-                           const Segment       segment,
-                           const double        radius,
-                           const double        inner_radius)
-      {
-        const Point<dim> o;
-        if (inner_radius == 0)
-          {
-            if (segment == Segment::full)
-              GridGenerator::hyper_ball(tria, o, radius);
-            else if (segment == Segment::half)
-              GridGenerator::half_hyper_ball(tria, o, radius);
-            else
-              GridGenerator::quarter_hyper_ball(tria, o, radius);
-          }
-        else if (segment == Segment::full)
-          GridGenerator::hyper_shell(tria, o, inner_radius, radius);
-        else if (segment == Segment::half)
-          GridGenerator::half_hyper_shell(tria, o, inner_radius, radius);
-        else
-          GridGenerator::quarter_hyper_shell(tria, o, inner_radius, radius);
-      }
-
-      // Disc (2D) or ball (3D) segment, solid or hollow, with the curved
-      // side below the centre: deal.II's segment turned by -90 degrees about
-      // z (+x becomes -y). Face groups: 0 the outer curved face, 1 the top
-      // (y = centre), 2 the symmetry plane x = centre, 3 the symmetry plane
-      // z = centre, then @p inner_id the inner curved face of a shell.
-      template <int dim>
-      void
-      make_ball_segment(Triangulation<dim>   &tria,
-                        const BodyParameters &body,
-                        const unsigned int    inner_id)
-      {
-        make_deal_ii_segment(tria,
-                             body.segment,
-                             body.radius,
-                             body.inner_radius);
-        if constexpr (dim == 2)
-          GridTools::rotate(-numbers::PI / 2, tria);
-        else
-          GridTools::rotate(Tensor<1, 3>({0., 0., 1.}), -numbers::PI / 2, tria);
-        const double tol = 1e-10 * body.radius;
-        // On the sphere of radius r: every vertex of the face is.
-        const auto on_sphere = [tol](const auto &face, const double r) {
-          for (const auto v : face->vertex_indices())
-            if (std::abs(face->vertex(v).norm() - r) > tol)
-              return false;
-          return true;
-        };
-        for (const auto &face : tria.active_face_iterators())
-          if (face->at_boundary())
-            {
-              const Point<dim> c = face->center();
-              if (on_sphere(face, body.radius))
-                face->set_boundary_id(0);
-              else if (body.inner_radius > 0 &&
-                       on_sphere(face, body.inner_radius))
-                face->set_boundary_id(inner_id);
-              else if (std::abs(c[1]) < tol)
-                face->set_boundary_id(1);
-              else if (std::abs(c[0]) < tol)
-                face->set_boundary_id(2);
-              else if (dim == 3 && std::abs(c[dim - 1]) < tol)
-                face->set_boundary_id(3);
-            }
-      }
-
-      struct CurvedBody
-      {
-        types::manifold_id surface_id, volume_id;
-      };
-
       template <int dim>
       void
       build_body(const BodyParameters &body,
@@ -282,163 +131,12 @@ namespace Signorini
                  Triangulation<dim>   &tria)
       {
         const Point<dim> shift = point_of<dim>(body.shift, b, "Shift");
-        switch (body.shape)
-          {
-            case BodyShape::block:
-              {
-                if (body.subdivisions.size() < dim)
-                  throw InputError(body_name(b) +
-                                   ", parameter 'Subdivisions': give " +
-                                   std::to_string(dim) + " numbers.");
-                const Point<dim> p1 =
-                  point_of<dim>(body.lower_corner, b, "Lower corner");
-                const Point<dim> p2 =
-                  point_of<dim>(body.upper_corner, b, "Upper corner");
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (!(p2[d] > p1[d]))
-                    throw InputError(body_name(b) +
-                                     ": 'Upper corner' must exceed 'Lower "
-                                     "corner' in every coordinate.");
-                std::vector<unsigned int> reps(body.subdivisions.begin(),
-                                               body.subdivisions.begin() + dim);
-                GridGenerator::subdivided_hyper_rectangle(
-                  tria, reps, p1 + shift, p2 + shift, true);
-                assign_boundary_ids(tria, body, b, 2 * dim);
-                break;
-              }
-            case BodyShape::ball_segment:
-            case BodyShape::cylinder_segment:
-              {
-                if (body.inner_radius >= body.radius)
-                  throw InputError(body_name(b) +
-                                   ", parameter 'Inner radius': it must be "
-                                   "below 'Radius' (0 for a solid body).");
-                const Point<dim> centre =
-                  point_of<dim>(body.centre, b, "Centre") + shift;
-                if (dim == 2 || body.shape == BodyShape::ball_segment)
-                  {
-                    make_ball_segment(tria, body, inner_face_group(body, dim));
-                    GridTools::shift(centre, tria);
-                    assign_boundary_ids(tria,
-                                        body,
-                                        b,
-                                        n_segment_faces(body.segment, dim) +
-                                          (body.inner_radius > 0));
-                  }
-                else
-                  {
-                    Triangulation<2> disc;
-                    make_ball_segment(disc, body, inner_face_group(body, 3));
-                    // Side walls keep 0/1/2 (and 5 inside a tube); put the
-                    // end caps on 3 and 4.
-                    const unsigned int n_layers =
-                      body.subdivisions.empty() ? 1 : body.subdivisions[0];
-                    Triangulation<3> cylinder;
-                    GridGenerator::extrude_triangulation(disc,
-                                                         n_layers + 1,
-                                                         body.length,
-                                                         cylinder);
-                    for (const auto &face : cylinder.active_face_iterators())
-                      if (face->at_boundary())
-                        {
-                          const double z = face->center()[2];
-                          if (std::abs(z) < 1e-12 * body.length)
-                            face->set_boundary_id(3);
-                          else if (std::abs(z - body.length) <
-                                   1e-12 * body.length)
-                            face->set_boundary_id(4);
-                        }
-                    if constexpr (dim == 3)
-                      {
-                        tria.copy_triangulation(cylinder);
-                        GridTools::shift(centre, tria);
-                      }
-                    assign_boundary_ids(tria,
-                                        body,
-                                        b,
-                                        body.inner_radius > 0 ? 6 : 5);
-                  }
-                break;
-              }
-            case BodyShape::file:
-              {
-                std::string name = body.mesh_file;
-                if (name[0] != '/')
-                  name = input_directory + "/" + name;
-                std::ifstream in(name);
-                if (!in || std::filesystem::is_directory(name))
-                  throw InputError(body_name(b) +
-                                   ", parameter 'Mesh file': cannot open '" +
-                                   name +
-                                   "'. Give an existing .msh or .inp file "
-                                   "(relative paths start at the parameter "
-                                   "file's directory).");
-                const std::string ext = name.substr(name.find_last_of('.') + 1);
-                if (ext != "msh" && ext != "inp")
-                  throw InputError(body_name(b) +
-                                   ", parameter 'Mesh file': unknown "
-                                   "extension '." +
-                                   ext + "'; use .msh or .inp.");
-                // Cell types are checked on the text first: GridIn reads
-                // triangles and tetrahedra into cells the element loops
-                // cannot use, and refuses others with a list that does not
-                // say what to do.
-                std::stringstream buffer;
-                buffer << in.rdbuf();
-                const std::string where = body_name(b) +
-                                          ", parameter 'Mesh file' (" +
-                                          body.mesh_file + ")";
-                check_mesh_file_cells(buffer.str(), ext, dim, where);
-                std::istringstream text(buffer.str());
-                GridIn<dim>        grid_in;
-                grid_in.attach_triangulation(tria);
-                {
-                  // The Abaqus reader prints its inner exception (with a
-                  // stack trace) before it throws: kept for the message.
-                  CerrCapture diagnostics;
-                  try
-                    {
-                      if (ext == "msh")
-                        grid_in.read_msh(text);
-                      else
-                        grid_in.read_abaqus(text);
-                    }
-                  catch (const ExceptionBase &e)
-                    {
-                      std::ostringstream info;
-                      e.print_info(info);
-                      // What GridIn quotes of the file is left out: a
-                      // 'Mesh file' may be a link to any file.
-                      const std::regex  quoted("<[^<>\n]*>");
-                      const std::string text =
-                        std::regex_replace(info.str(),
-                                           quoted,
-                                           "(a line of the file)");
-                      const std::string more =
-                        std::regex_replace(grid_in_diagnostics(
-                                             diagnostics.text()),
-                                           quoted,
-                                           "(a line of the file)");
-                      throw InputError(body_name(b) +
-                                       ", parameter 'Mesh file': GridIn could "
-                                       "not read '" +
-                                       name + "': " + text +
-                                       (more.empty() ? "" : " (" + more + ")"));
-                    }
-                }
-                check_reference_cells(tria, where);
-                for (const auto &face : tria.active_face_iterators())
-                  if (face->at_boundary())
-                    {
-                      const auto it =
-                        body.boundary_id_map.find(face->boundary_id());
-                      if (it != body.boundary_id_map.end())
-                        face->set_boundary_id(it->second);
-                    }
-                GridTools::shift(shift, tria);
-                break;
-              }
-          }
+        if (body.shape == BodyShape::block)
+          build_block(body, b, shift, tria);
+        else if (body.shape == BodyShape::file)
+          build_from_file(body, b, input_directory, shift, tria);
+        else
+          build_segment(body, b, shift, tria);
         if (body.rotation_angle != 0)
           GridTools::transform(BodyRotation<dim>(body, b), tria);
         if (body.material_id >= 0 || body.shape != BodyShape::file)
@@ -585,6 +283,96 @@ namespace Signorini
           curved.manifold = std::make_unique<SphericalManifold<dim>>(centre);
         return curved;
       }
+      // Appends the coarse cells of a body to the joined mesh's lists.
+      template <int dim>
+      void
+      append_coarse_mesh(const Triangulation<dim>   &body_tria,
+                         std::vector<Point<dim>>    &vertices,
+                         std::vector<CellData<dim>> &cells,
+                         SubCellData                &subcells)
+      {
+        auto description = GridTools::get_coarse_mesh_description(body_tria);
+        const unsigned int offset = vertices.size();
+        for (const auto &v : std::get<0>(description))
+          vertices.push_back(v);
+        for (auto c : std::get<1>(description))
+          {
+            for (auto &v : c.vertices)
+              v += offset;
+            cells.push_back(c);
+          }
+        auto &sub = std::get<2>(description);
+        for (auto l : sub.boundary_lines)
+          {
+            for (auto &v : l.vertices)
+              v += offset;
+            subcells.boundary_lines.push_back(l);
+          }
+        for (auto q : sub.boundary_quads)
+          {
+            for (auto &v : q.vertices)
+              v += offset;
+            subcells.boundary_quads.push_back(q);
+          }
+      }
+
+
+      // 'Local refinements' cycles where 'Refinement region' is positive.
+      template <int dim>
+      void
+      refine_region(const Parameters                          &parameters,
+                    parallel::distributed::Triangulation<dim> &triangulation)
+      {
+        // Local refinement where the user's region function is positive.
+        const auto &geometry = parameters.geometry;
+        if (geometry.local_refinements > 0)
+          {
+            FunctionParser<dim> region(1);
+            try
+              {
+                region.initialize(dim == 2 ? "x,y,cycle" : "x,y,z,cycle",
+                                  geometry.refinement_region,
+                                  parameters.boundary_conditions.constants,
+                                  true);
+                region.value(Point<dim>());
+              }
+            catch (const ExceptionBase &e)
+              {
+                throw InputError(
+                  "subsection 'Geometry', parameter 'Refinement region': "
+                  "cannot parse '" +
+                  geometry.refinement_region + "'. Give an expression in x, y" +
+                  std::string(dim == 3 ? ", z" : "") +
+                  ", the cycle number 'cycle' (1, 2, ...) and 'Function "
+                  "constants', positive where cells are to be refined.");
+              }
+            for (unsigned int cycle = 0; cycle < geometry.local_refinements;
+                 ++cycle)
+              {
+                // The region of this cycle: one that shrinks with 'cycle'
+                // grades the mesh.
+                region.set_time(cycle + 1);
+                // A cell touches the region if the expression is positive at
+                // its centre or at one of its vertices, so that a region
+                // smaller than the coarse cells still gets refined.
+                for (const auto &cell : triangulation.active_cell_iterators())
+                  if (cell->is_locally_owned())
+                    {
+                      bool touches = region.value(cell->center()) > 0;
+                      for (const unsigned int v : cell->vertex_indices())
+                        touches = touches || region.value(cell->vertex(v)) > 0;
+                      if (touches)
+                        cell->set_refine_flag();
+                    }
+                // The closure (one hanging node per face) is flagged by
+                // prepare_coarsening_and_refinement(), which the execution
+                // would call anyway: the count after it is the new size.
+                triangulation.prepare_coarsening_and_refinement();
+                check_local_refinement(triangulation, cycle, parameters);
+                triangulation.execute_coarsening_and_refinement();
+              }
+          }
+      }
     } // namespace
 
 
@@ -636,29 +424,7 @@ namespace Signorini
               manifolds[surface] = std::move(curved.manifold);
             }
 
-          auto description = GridTools::get_coarse_mesh_description(body_tria);
-          const unsigned int offset = vertices.size();
-          for (const auto &v : std::get<0>(description))
-            vertices.push_back(v);
-          for (auto c : std::get<1>(description))
-            {
-              for (auto &v : c.vertices)
-                v += offset;
-              cells.push_back(c);
-            }
-          auto &sub = std::get<2>(description);
-          for (auto l : sub.boundary_lines)
-            {
-              for (auto &v : l.vertices)
-                v += offset;
-              subcells.boundary_lines.push_back(l);
-            }
-          for (auto q : sub.boundary_quads)
-            {
-              for (auto &v : q.vertices)
-                v += offset;
-              subcells.boundary_quads.push_back(q);
-            }
+          append_coarse_mesh(body_tria, vertices, cells, subcells);
         }
 
       check_contact_surfaces(parameters.contact, parts);
@@ -684,55 +450,7 @@ namespace Signorini
         }
       triangulation.refine_global(parameters.geometry.global_refinements);
 
-      // Local refinement where the user's region function is positive.
-      const auto &geometry = parameters.geometry;
-      if (geometry.local_refinements > 0)
-        {
-          FunctionParser<dim> region(1);
-          try
-            {
-              region.initialize(dim == 2 ? "x,y,cycle" : "x,y,z,cycle",
-                                geometry.refinement_region,
-                                parameters.boundary_conditions.constants,
-                                true);
-              region.value(Point<dim>());
-            }
-          catch (const ExceptionBase &e)
-            {
-              throw InputError(
-                "subsection 'Geometry', parameter 'Refinement region': "
-                "cannot parse '" +
-                geometry.refinement_region + "'. Give an expression in x, y" +
-                std::string(dim == 3 ? ", z" : "") +
-                ", the cycle number 'cycle' (1, 2, ...) and 'Function "
-                "constants', positive where cells are to be refined.");
-            }
-          for (unsigned int cycle = 0; cycle < geometry.local_refinements;
-               ++cycle)
-            {
-              // The region of this cycle: one that shrinks with 'cycle'
-              // grades the mesh.
-              region.set_time(cycle + 1);
-              // A cell touches the region if the expression is positive at
-              // its centre or at one of its vertices, so that a region
-              // smaller than the coarse cells still gets refined.
-              for (const auto &cell : triangulation.active_cell_iterators())
-                if (cell->is_locally_owned())
-                  {
-                    bool touches = region.value(cell->center()) > 0;
-                    for (const unsigned int v : cell->vertex_indices())
-                      touches = touches || region.value(cell->vertex(v)) > 0;
-                    if (touches)
-                      cell->set_refine_flag();
-                  }
-              // The closure (one hanging node per face) is flagged by
-              // prepare_coarsening_and_refinement(), which the execution
-              // would call anyway: the count after it is the new size.
-              triangulation.prepare_coarsening_and_refinement();
-              check_local_refinement(triangulation, cycle, parameters);
-              triangulation.execute_coarsening_and_refinement();
-            }
-        }
+      refine_region(parameters, triangulation);
     }
 
 

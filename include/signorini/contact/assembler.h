@@ -166,6 +166,13 @@ namespace Signorini
                    TrilinosWrappers::SparseMatrix             *matrix,
                    TrilinosWrappers::MPI::Vector              &rhs) const;
 
+      /** The friction rows of the nodes of a node-status pair (and the
+       * held nodes of the others), each point adding its share. */
+      void
+      add_node_friction_rows(const ContactPoint    &point,
+                             const PointEvaluation &e,
+                             Vector<double>        &F) const;
+
       /** The derivatives of the friction rows of a node-status pair, the
        * status of each node fixed. */
       void
