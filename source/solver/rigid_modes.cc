@@ -97,32 +97,11 @@ namespace Signorini
                            const bool                       axisymmetric,
                            const MPI_Comm                   comm_)
     {
-      comm                 = comm_;
-      owned                = owned_system;
-      const auto  &tria    = dof_handler.get_triangulation();
-      unsigned int n_parts = 0;
-      const auto   part    = Geometry::coarse_parts(tria, n_parts);
-
-      // Each part, and with several parts all of them together (two free
-      // bodies pressed together hold each other, not their joint motion).
-      const unsigned int n_bodies = n_parts > 1 ? n_parts + 1 : 1;
-      bodies.assign(n_bodies, Body());
-      std::vector<unsigned int>           n_vertices(n_bodies, 0);
-      std::vector<std::set<unsigned int>> vertices(n_bodies);
-      for (auto cell = tria.begin(0); cell != tria.end(0); ++cell)
-        for (const unsigned int b : {part[cell->index()], n_bodies - 1})
-          {
-            if (bodies[b].modes.empty() && vertices[b].empty())
-              bodies[b].material = cell->material_id();
-            for (const unsigned int v : cell->vertex_indices())
-              vertices[b].insert(cell->vertex_index(v));
-          }
-      for (unsigned int b = 0; b < n_bodies; ++b)
-        {
-          for (const auto v : vertices[b])
-            bodies[b].centroid += tria.get_vertices()[v];
-          bodies[b].centroid /= double(vertices[b].size());
-        }
+      comm  = comm_;
+      owned = owned_system;
+      const std::vector<unsigned int> part =
+        find_bodies(dof_handler.get_triangulation());
+      const unsigned int n_bodies = bodies.size();
 
       // Axisymmetric (x = r): only the axial translation is rigid.
       std::vector<unsigned int> modes;
@@ -196,6 +175,37 @@ namespace Signorini
             }
         }
       mode_ids = modes;
+    }
+
+
+    // Each part of the mesh, and with several parts all of them together
+    // (two free bodies pressed together hold each other, not their joint
+    // motion): bodies with their material and the centroid of their coarse
+    // vertices. Returns the part of each coarse cell.
+    template <int dim>
+    std::vector<unsigned int>
+    RigidModes<dim>::find_bodies(const Triangulation<dim> &tria)
+    {
+      unsigned int       n_parts  = 0;
+      const auto         part     = Geometry::coarse_parts(tria, n_parts);
+      const unsigned int n_bodies = n_parts > 1 ? n_parts + 1 : 1;
+      bodies.assign(n_bodies, Body());
+      std::vector<std::set<unsigned int>> vertices(n_bodies);
+      for (auto cell = tria.begin(0); cell != tria.end(0); ++cell)
+        for (const unsigned int b : {part[cell->index()], n_bodies - 1})
+          {
+            if (bodies[b].modes.empty() && vertices[b].empty())
+              bodies[b].material = cell->material_id();
+            for (const unsigned int v : cell->vertex_indices())
+              vertices[b].insert(cell->vertex_index(v));
+          }
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        {
+          for (const auto v : vertices[b])
+            bodies[b].centroid += tria.get_vertices()[v];
+          bodies[b].centroid /= double(vertices[b].size());
+        }
+      return part;
     }
 
 

@@ -113,6 +113,11 @@ namespace Signorini
       describe(const Motion &motion) const;
 
     private:
+      /** bodies (material, centroid) from the parts of @p tria; the part
+       * of each coarse cell. */
+      std::vector<unsigned int>
+      find_bodies(const Triangulation<dim> &tria);
+
       /** The combinations of body @p b's modes that @p K does not hold,
        * from the scaled K t_k (@p Kt) of each mode. */
       std::vector<Motion>
