@@ -26,7 +26,7 @@ namespace
            "subsection Geometry\n set Global refinements = " +
            std::to_string(refinements) +
            "\n subsection Body 1\n  set Shape = block\n"
-           "  set Upper corner = 1, 1\n end\nend\n"
+           "  subsection Block\n   set Upper corner = 1, 1\n  end\n end\nend\n"
            "subsection Materials\n subsection Material 1\n"
            "  set Young's modulus = 2.5\n  set Poisson's ratio = 0.25\n"
            "  set Body force = " +

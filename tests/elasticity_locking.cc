@@ -38,7 +38,7 @@ namespace
          << "\n set Volumetric strain = " << volumetric << "\nend\n"
          << "subsection Geometry\n set Global refinements = " << refinements
          << "\n subsection Body 1\n  set Shape = block\n"
-            "  set Upper corner = 1, 1\n end\nend\n"
+            "  subsection Block\n   set Upper corner = 1, 1\n  end\n end\nend\n"
             "subsection Materials\n subsection Material 1\n"
             "  set Young's modulus = "
          << 2 * (1 + nu) << "\n  set Poisson's ratio = " << nu

@@ -4,6 +4,7 @@
 
 #include <signorini/base/input_checks.h>
 #include <signorini/base/parameters.h>
+#include <signorini/base/plugins.h>
 
 #include <signorini/base/parameter_helpers.h>
 
@@ -13,128 +14,20 @@ namespace Signorini
   using internal::to_doubles;
   using internal::to_unsigned;
 
-  namespace
-  {
-    using internal::SelectionTable;
-    const SelectionTable<BodyShape> body_shapes{
-      {"block", BodyShape::block},
-      {"ball segment", BodyShape::ball_segment},
-      {"cylinder segment", BodyShape::cylinder_segment},
-      {"file", BodyShape::file}};
-    const SelectionTable<Segment>     segments{{"full", Segment::full},
-                                           {"half", Segment::half},
-                                           {"quarter", Segment::quarter}};
-    const SelectionTable<CurvedShape> curved_shapes{
-      {"none", CurvedShape::none},
-      {"sphere", CurvedShape::sphere},
-      {"cylinder", CurvedShape::cylinder}};
-  } // namespace
-
-
   // ------------------------------------------------------------------ Body
   void
   BodyParameters::declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry(
-      "Shape",
-      "block",
-      body_shapes.pattern(),
-      "How this body's mesh is made. block: rectangle (2D) or box (3D) between "
-      "'Lower corner' and 'Upper corner' with 'Subdivisions' cells per "
-      "direction; boundary faces numbered 0..3 (2D: x-, x+, y-, y+) or 0..5 "
-      "(3D: x-, x+, y-, y+, z-, z+). ball segment: disc (2D) or ball (3D) of "
-      "'Radius' around 'Centre', cut to the 'Segment' below the centre (its "
-      "flat face on top, curved face down); faces: 0 curved, 1 flat top (y = "
-      "centre), for a quarter 2 the flat side x = centre and (3D) 3 the flat "
-      "side z = centre. cylinder segment: the 2D disc segment extruded along "
-      "z over 'Length' (3D; same as ball segment in 2D); faces: 0 curved, 1 "
-      "top, 2 side x = centre (quarter), 3 z-, 4 z+. file: "
-      "'Mesh file' read by deal.II's GridIn.");
-    prm.declare_entry("Lower corner",
-                      "0, 0, 0",
-                      point_pattern(),
-                      "Lower corner of a block [m]; the first Dimension "
-                      "numbers are used.");
-    prm.declare_entry("Upper corner",
-                      "1, 1, 1",
-                      point_pattern(),
-                      "Upper corner of a block [m]; the first Dimension "
-                      "numbers are used.");
-    prm.declare_entry("Subdivisions",
-                      "1, 1, 1",
-                      Patterns::List(Patterns::Integer(1, 10000), 1, 3, ","),
-                      "Number of cells of a block per coordinate direction "
-                      "[-]; the first Dimension numbers are used.");
-    prm.declare_entry("Centre",
-                      "0, 0, 0",
-                      point_pattern(),
-                      "Centre of a ball or cylinder segment [m] (for a "
-                      "cylinder the z coordinate is the start of its axis).");
-    prm.declare_entry("Radius",
-                      "1",
-                      Patterns::Double(1e-300),
-                      "Radius of a ball or cylinder segment [m].");
-    prm.declare_entry("Inner radius",
-                      "0",
-                      Patterns::Double(0),
-                      "Inner radius of a hollow ball or cylinder segment [m] "
-                      "(a shell or tube), below 'Radius'; 0: solid. The inner "
-                      "curved face is the last face group: ball segment 1 "
-                      "(full), 2 (half), 3 (quarter, 2D) or 4 (quarter, 3D); "
-                      "cylinder segment (3D) 5.");
-    prm.declare_entry("Segment",
-                      "half",
-                      segments.pattern(),
-                      "Part of the disc/ball kept: full, the half below the "
-                      "centre, or the quarter below the centre with x >= "
-                      "centre (for symmetric models).");
-    prm.declare_entry("Length",
-                      "1",
-                      Patterns::Double(1e-300),
-                      "Axial length of a cylinder segment in 3D [m].");
-    prm.declare_entry("Mesh file",
-                      "",
-                      Patterns::FileName(),
-                      "Mesh file for Shape = file: Gmsh (.msh) or Abaqus "
-                      "(.inp). Relative paths are taken from the directory "
-                      "of the parameter file.");
-    prm.declare_entry(
-      "Boundary id map",
-      "",
-      Patterns::Map(Patterns::Integer(0, 255), Patterns::Integer(0, 255)),
-      "For Shape = file: physical group (Gmsh tag / Abaqus surface number) -> "
-      "boundary id, as 'tag: id, tag: id'. Tags not listed keep their number.");
-    prm.declare_entry(
-      "Manifold",
-      "none",
-      curved_shapes.pattern(),
-      "For Shape = file: the exact surface that the faces with 'Manifold "
-      "boundary ids' lie on, so that refinement (global, local, adaptive) "
-      "puts new nodes on it; without it the flat faces of the file stay flat "
-      "when refined. sphere: a sphere (2D: a circle) about 'Centre'; "
-      "cylinder (3D): about the line through 'Centre' along 'Manifold "
-      "axis'. 'Centre' and the axis are in the file's coordinates (before "
-      "'Shift' and 'Rotation angle'). The body's cells then follow the "
-      "surface by transfinite interpolation, as in a generated ball "
-      "segment. Generated shapes have their curved surfaces already.");
-    prm.declare_entry("Manifold boundary ids",
-                      "",
-                      Patterns::List(Patterns::Integer(0, 255), 0, 255, ","),
-                      "Boundary ids (after 'Boundary id map') of the faces "
-                      "on the 'Manifold' surface; each face's vertices must "
-                      "lie on one sphere (cylinder) about it.");
-    prm.declare_entry("Manifold axis",
-                      "0, 0, 1",
-                      point_pattern(),
-                      "Direction of the axis of a 'Manifold = cylinder' "
-                      "(3D; any length but 0).");
+    // 'Shape' and every shape's subsection: the family declares them.
+    Plugins::declare(Plugins::Family::shape, prm);
     prm.declare_entry(
       "Boundary ids",
       "",
       Patterns::List(Patterns::Integer(0, 255), 0, 6, ","),
-      "Boundary ids given to the faces of a generated shape, in the order of "
-      "the shape's own face numbers (see Shape). Empty: 10*k + face number "
-      "for Body k, so that bodies never share a boundary id.");
+      "Boundary ids given to the face groups of a generated shape, in the "
+      "order of the shape's own group numbers (see Shape). Empty: 10*k + "
+      "group number for Body k, so that bodies never share a boundary id. A "
+      "mesh file keeps its own ids (see 'File/Boundary id map').");
     prm.declare_entry("Material id",
                       "-1",
                       Patterns::Integer(-1, 255),
@@ -162,39 +55,19 @@ namespace Signorini
     prm.declare_entry("Rotation centre",
                       "0, 0, 0",
                       point_pattern(),
-                      "Point the rotation turns about [m] (e.g. the body's "
-                      "'Centre' to turn a segment in place); the first "
-                      "Dimension numbers are used.");
+                      "Point the rotation turns about [m] (e.g. a segment's "
+                      "'Centre' to turn it in place); the first Dimension "
+                      "numbers are used.");
   }
 
 
   void
   BodyParameters::parse_parameters(ParameterHandler &prm)
   {
-    shape        = body_shapes.value(prm.get("Shape"));
-    lower_corner = to_doubles(prm.get("Lower corner"));
-    upper_corner = to_doubles(prm.get("Upper corner"));
-    subdivisions = to_unsigned(prm.get("Subdivisions"));
-    centre       = to_doubles(prm.get("Centre"));
-    radius       = prm.get_double("Radius");
-    inner_radius = prm.get_double("Inner radius");
-    segment      = segments.value(prm.get("Segment"));
-    length       = prm.get_double("Length");
-    mesh_file    = prm.get("Mesh file");
-    boundary_id_map.clear();
-    for (const auto &entry :
-         Utilities::split_string_list(prm.get("Boundary id map"), ','))
-      {
-        const auto kv = Utilities::split_string_list(entry, ':');
-        boundary_id_map[Utilities::string_to_int(kv[0])] =
-          Utilities::string_to_int(kv[1]);
-      }
-    manifold              = curved_shapes.value(prm.get("Manifold"));
-    manifold_boundary_ids = to_unsigned(prm.get("Manifold boundary ids"));
-    manifold_axis         = to_doubles(prm.get("Manifold axis"));
-    boundary_ids          = to_unsigned(prm.get("Boundary ids"));
-    material_id           = prm.get_integer("Material id");
-    shift                 = to_doubles(prm.get("Shift"));
+    shape           = prm.get("Shape");
+    boundary_ids    = to_unsigned(prm.get("Boundary ids"));
+    material_id     = prm.get_integer("Material id");
+    shift           = to_doubles(prm.get("Shift"));
     rotation_angle  = prm.get_double("Rotation angle") * numbers::PI / 180.;
     rotation_axis   = to_doubles(prm.get("Rotation axis"));
     rotation_centre = to_doubles(prm.get("Rotation centre"));

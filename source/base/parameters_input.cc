@@ -189,13 +189,6 @@ namespace Signorini
                          std::to_string(k + 1) +
                          "', parameter 'Body force': give at least "
                          "Dimension expressions separated by ';'.");
-    for (unsigned int b = 0; b < geometry.bodies.size(); ++b)
-      if (geometry.bodies[b].shape == BodyShape::file &&
-          geometry.bodies[b].mesh_file.empty())
-        throw InputError("subsection 'Geometry/Body " + std::to_string(b + 1) +
-                         "', parameter 'Mesh file': Shape = file needs a mesh "
-                         "file name.");
-
     check_contact();
   }
 
@@ -404,6 +397,28 @@ namespace Signorini
       {"Obstacle normal",
        "it is 'Outward normal' in subsection 'Contact/Pair k/Plane' now: "
        "move the line there."}};
+    // Entries of 'Geometry/Body k' that moved into the shape's subsection.
+    const char *const shape_entries[] = {"Lower corner",
+                                         "Upper corner",
+                                         "Subdivisions",
+                                         "Centre",
+                                         "Radius",
+                                         "Inner radius",
+                                         "Segment",
+                                         "Length",
+                                         "Mesh file",
+                                         "Boundary id map",
+                                         "Manifold",
+                                         "Manifold boundary ids",
+                                         "Manifold axis"};
+    const char *const shape_entries_moved =
+      "a shape reads its entries from its own subsection of 'Geometry/Body "
+      "k', named after it: 'Lower corner', 'Upper corner' and "
+      "'Subdivisions' in 'Block'; 'Centre', 'Radius', 'Inner radius' and "
+      "'Segment' in 'Ball segment' or 'Cylinder segment' (with 'Length' "
+      "and 'Axial subdivisions', the former 'Subdivisions'); 'Mesh file', "
+      "'Boundary id map' and the 'Manifold' entries in 'File' (a file's "
+      "'Centre' is 'Manifold centre'). Move the line there.";
     // Subsections that moved.
     const std::pair<const char *, const char *> moved_subsections[] = {
       {"Reference solution",
@@ -456,6 +471,13 @@ namespace Signorini
             std::string::npos)
           return "Error in " + where + ": the entry '" + name +
                  "' moved: " + where_now;
+      if (std::regex_search(where,
+                            std::regex("subsection 'Geometry/Body \\d+'\\)$")))
+        for (const char *name : shape_entries)
+          if (message.find("No entry with name <" + std::string(name) + ">") !=
+              std::string::npos)
+            return "Error in " + where + ": the entry '" + name +
+                   "' moved: " + shape_entries_moved;
       std::string hint;
       for (const auto &[name, instead] : removed)
         if (message.find("No entry with name <" + std::string(name) + ">") !=

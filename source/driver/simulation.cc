@@ -26,6 +26,7 @@ namespace Signorini
               Utilities::MPI::this_mpi_process(mpi_communicator) == 0 &&
                 parameters.output.verbosity != Verbosity::quiet)
       , sout(std::cout, Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      , shapes(Geometry::Shapes::make_shapes<dim>(parameters, prm))
       , materials(Material::make_materials<dim>(parameters, prm))
       , obstacles(Obstacles::make_obstacles<dim>(parameters, prm))
       , timer(mpi_communicator,
@@ -98,7 +99,7 @@ namespace Signorini
   Simulation<dim>::make_mesh()
   {
     TimerOutput::Scope t(timer, "mesh");
-    Geometry::create_mesh(parameters, system.triangulation);
+    Geometry::create_mesh(parameters, shapes, system.triangulation);
     system.measure_mesh();
     check_input_against_mesh();
   }

@@ -439,27 +439,17 @@ namespace Signorini
 
 
     void
-    check_subdivisions(const BodyParameters &body,
-                       const unsigned int    b,
-                       const Parameters     &parameters)
+    check_body_cells(const double       cells,
+                     const std::string &where,
+                     const std::string &entry,
+                     const Parameters  &parameters)
     {
-      if (body.shape != BodyShape::block ||
-          body.subdivisions.size() < parameters.dimension)
-        return;
-      double      cells = 1;
-      std::string product;
-      for (unsigned int d = 0; d < parameters.dimension; ++d)
-        {
-          cells *= body.subdivisions[d];
-          product += (d ? " x " : "") + std::to_string(body.subdivisions[d]);
-        }
       if (cells > parameters.geometry.maximum_cells)
-        throw InputError(
-          "subsection 'Geometry/Body " + std::to_string(b + 1) +
-          "', parameter 'Subdivisions': " + product +
-          " subdivisions would make " + cell_estimate_text(cells, parameters) +
-          ". Lower 'Subdivisions', or raise 'Geometry/Maximum number of "
-          "cells' if the machine has the memory.");
+        throw InputError(where + ": the body would have " +
+                         cell_estimate_text(cells, parameters) + ". Lower '" +
+                         entry +
+                         "', or raise 'Geometry/Maximum number of cells' if "
+                         "the machine has the memory.");
     }
 
 

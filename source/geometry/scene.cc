@@ -8,10 +8,9 @@
 #include <deal.II/physics/transformations.h>
 
 #include <signorini/base/input_checks.h>
+#include <signorini/base/parameter_helpers.h>
 #include <signorini/geometry/mesh_checks.h>
 #include <signorini/geometry/scene.h>
-
-#include "shapes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,260 +28,123 @@ namespace Signorini
   {
     namespace
     {
-      using namespace internal;
+      using Shapes::Placement;
 
-      // The body's rotation ('Rotation angle' about 'Rotation axis' through
-      // 'Rotation centre'): of points, and of directions.
-      template <int dim>
-      class BodyRotation
+      // The subsection of body @p b, for messages.
+      std::string
+      body_name(const unsigned int b)
       {
-      public:
-        BodyRotation(const BodyParameters &body, const unsigned int b)
-            : centre(point_of<dim>(body.rotation_centre, b, "Rotation centre"))
-        {
-          if constexpr (dim == 2)
-            R = Physics::Transformations::Rotations::rotation_matrix_2d(
-              body.rotation_angle);
-          else
-            {
-              const Point<3> axis =
-                point_of<3>(body.rotation_axis, b, "Rotation axis");
-              if (axis.norm() == 0)
-                throw InputError(body_name(b) +
-                                 ", parameter 'Rotation axis': give a "
-                                 "nonzero direction.");
-              R = Physics::Transformations::Rotations::rotation_matrix_3d(
-                Tensor<1, 3>(axis / axis.norm()), body.rotation_angle);
-            }
-        }
-
-        Point<dim>
-        operator()(const Point<dim> &p) const
-        {
-          return centre + R * (p - centre);
-        }
-
-        Tensor<1, dim>
-        direction(const Tensor<1, dim> &v) const
-        {
-          return R * v;
-        }
-
-      private:
-        Point<dim>     centre;
-        Tensor<2, dim> R;
-      };
-
-      // Refuses a coarse cell whose (multi)linear map is not orientation
-      // preserving at every vertex: inverted or tangled (e.g. a bow-tie
-      // quadrilateral from a wrong node order). deal.II's readers repair
-      // cells that are merely inverted as a whole; a tangled cell would run
-      // and give a wrong solution without any sign.
-      template <int dim>
-      void
-      check_cells(const Triangulation<dim> &tria,
-                  const unsigned int        b,
-                  const BodyParameters     &body)
-      {
-        for (const auto &cell : tria.active_cell_iterators())
-          {
-            const double h = cell->diameter();
-            for (unsigned int corner = 0; corner < (1u << dim); ++corner)
-              {
-                // Edge vectors along the three reference directions at this
-                // corner (deal.II's lexicographic vertex numbering).
-                Tensor<2, dim> J;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    const unsigned int   from = corner & ~(1u << d);
-                    const unsigned int   to   = corner | (1u << d);
-                    const Tensor<1, dim> e =
-                      cell->vertex(to) - cell->vertex(from);
-                    for (unsigned int r = 0; r < dim; ++r)
-                      J[r][d] = e[r];
-                  }
-                if (determinant(J) <= 1e-12 * std::pow(h, dim))
-                  {
-                    std::ostringstream where;
-                    where << cell->center();
-                    std::ostringstream vertex;
-                    vertex << cell->vertex(corner);
-                    throw InputError(
-                      body_name(b) +
-                      (body.shape == BodyShape::file ?
-                         ", parameter 'Mesh file' (" + body.mesh_file + ")" :
-                         std::string()) +
-                      ": the cell with centre (" + where.str() +
-                      ") is inverted or tangled (its map from the reference "
-                      "cell is not orientation preserving at vertex (" +
-                      vertex.str() +
-                      ")). Fix the node order or the node positions of that "
-                      "element in the mesh.");
-                  }
-              }
-          }
+        return "subsection 'Geometry/Body " + std::to_string(b + 1) + "'";
       }
 
+      // The body's placement: 'Shift', then 'Rotation angle' about
+      // 'Rotation axis' through 'Rotation centre'.
       template <int dim>
-      void
-      build_body(const BodyParameters &body,
-                 const unsigned int    b,
-                 const std::string    &input_directory,
-                 Triangulation<dim>   &tria)
+      Placement<dim>
+      placement_of(const BodyParameters &body)
       {
-        const Point<dim> shift = point_of<dim>(body.shift, b, "Shift");
-        if (body.shape == BodyShape::block)
-          build_block(body, b, shift, tria);
-        else if (body.shape == BodyShape::file)
-          build_from_file(body, b, input_directory, shift, tria);
+        using internal::point_of;
+        Tensor<2, dim> R;
+        if constexpr (dim == 2)
+          R = Physics::Transformations::Rotations::rotation_matrix_2d(
+            body.rotation_angle);
         else
-          build_segment(body, b, shift, tria);
-        if (body.rotation_angle != 0)
-          GridTools::transform(BodyRotation<dim>(body, b), tria);
-        if (body.material_id >= 0 || body.shape != BodyShape::file)
+          {
+            const Point<3> axis =
+              point_of<3>(body.rotation_axis, "Rotation axis");
+            if (axis.norm() == 0)
+              throw InputError("parameter 'Rotation axis': give a nonzero "
+                               "direction.");
+            R = Physics::Transformations::Rotations::rotation_matrix_3d(
+              Tensor<1, 3>(axis / axis.norm()), body.rotation_angle);
+          }
+        return Placement<dim>(point_of<dim>(body.shift, "Shift"),
+                              R,
+                              point_of<dim>(body.rotation_centre,
+                                            "Rotation centre"));
+      }
+
+
+      // Gives the face groups of a generated shape the body's user-visible
+      // ids: 'Boundary ids', or 10 (b + 1) + group.
+      types::boundary_id
+      user_id(const BodyParameters &body,
+              const unsigned int    b,
+              const unsigned int    group)
+      {
+        return body.boundary_ids.empty() ? 10 * (b + 1) + group :
+                                           body.boundary_ids[group];
+      }
+
+
+      // Body @p b built by its shape: its faces' user ids, its curved
+      // surface (returned), its placement and material ids.
+      template <int dim>
+      Shapes::CurvedSurface<dim>
+      build_body(const BodyParameters         &body,
+                 const unsigned int            b,
+                 const Shapes::Interface<dim> &shape,
+                 const Parameters             &parameters,
+                 Triangulation<dim>           &tria)
+      {
+        const std::string where = Shapes::subsection_of(b, body.shape);
+        std::string       entry;
+        const double      cells = shape.n_cells(entry);
+        check_body_cells(cells,
+                         where + ", parameter '" + entry + "'",
+                         entry,
+                         parameters);
+        const unsigned int n_groups = shape.n_face_groups();
+        if (n_groups == 0 && !body.boundary_ids.empty())
+          throw InputError(body_name(b) +
+                           ", parameter 'Boundary ids': a mesh read from a "
+                           "file keeps its own ids; rename them with 'Boundary "
+                           "id map' in " +
+                           where + " and remove this entry.");
+        if (!body.boundary_ids.empty() && body.boundary_ids.size() < n_groups)
+          throw InputError(body_name(b) +
+                           ", parameter 'Boundary ids': this "
+                           "shape has " +
+                           std::to_string(n_groups) + " face groups, give " +
+                           std::to_string(n_groups) +
+                           " ids (or leave it empty).");
+        Placement<dim> placement;
+        try
+          {
+            placement = placement_of<dim>(body);
+          }
+        catch (const InputError &e)
+          {
+            throw InputError(body_name(b) + ", " + e.what());
+          }
+        Shapes::CurvedSurface<dim> curved;
+        try
+          {
+            shape.build(tria);
+            curved = shape.curved_surface(tria, placement);
+          }
+        catch (const InputError &e)
+          {
+            throw InputError(where + ", " + e.what());
+          }
+        if (n_groups > 0)
+          {
+            for (const auto &face : tria.active_face_iterators())
+              if (face->at_boundary())
+                face->set_boundary_id(user_id(body, b, face->boundary_id()));
+            for (auto &id : curved.faces)
+              id = user_id(body, b, id);
+          }
+        GridTools::transform([&](const Point<dim> &p) { return placement(p); },
+                             tria);
+        if (body.material_id >= 0 || n_groups > 0)
           for (const auto &cell : tria.active_cell_iterators())
             cell->set_material_id(body.material_id >= 0 ? body.material_id :
                                                           b + 1);
-      }
-
-      // The curved faces of a body and the exact surface they lie on.
-      template <int dim>
-      struct CurvedSurface
-      {
-        std::vector<types::boundary_id> boundary_ids;
-        std::unique_ptr<Manifold<dim>>  manifold; // null: no curved faces
-      };
-
-      // Refuses a 'Manifold boundary ids' entry that names no face of the
-      // built body, or a face whose vertices are not equidistant from the
-      // manifold's centre (sphere) or axis (cylinder): a wrong 'Centre'
-      // would otherwise bend the refined mesh out of shape.
-      template <int dim>
-      void
-      check_curved_faces(const Triangulation<dim>              &tria,
-                         const std::vector<types::boundary_id> &ids,
-                         const Point<dim>                      &centre,
-                         const Tensor<1, dim>                  &axis,
-                         const unsigned int                     b)
-      {
-        const auto distance = [&](const Point<dim> &p) {
-          const Tensor<1, dim> r = p - centre;
-          return (r - (r * axis) * axis).norm();
-        };
-        const std::string where = body_name(b) + ", parameter 'Manifold ";
-        std::set<types::boundary_id> found;
-        for (const auto &face : tria.active_face_iterators())
-          if (face->at_boundary() &&
-              std::find(ids.begin(), ids.end(), face->boundary_id()) !=
-                ids.end())
-            {
-              found.insert(face->boundary_id());
-              double r_min = distance(face->vertex(0)), r_max = r_min;
-              for (const auto v : face->vertex_indices())
-                {
-                  r_min = std::min(r_min, distance(face->vertex(v)));
-                  r_max = std::max(r_max, distance(face->vertex(v)));
-                }
-              if (r_max - r_min > 1e-5 * r_max)
-                {
-                  std::ostringstream text;
-                  text << where << "boundary ids': the face with centre ("
-                       << face->center() << ") and boundary id "
-                       << face->boundary_id() << " has vertices at distances "
-                       << r_min << " to " << r_max << " from the manifold's "
-                       << (axis.norm() > 0 ? "axis" : "centre")
-                       << ", so it does not lie on one surface about it. "
-                          "Check 'Centre' (in the file's coordinates)"
-                       << (axis.norm() > 0 ? " and 'Manifold axis'" : "")
-                       << ", or leave this id out.";
-                  throw InputError(text.str());
-                }
-            }
-        for (const auto id : ids)
-          if (found.count(id) == 0)
-            throw InputError(where +
-                             "boundary ids': no boundary face of "
-                             "this body has the id " +
-                             std::to_string(id) +
-                             " (ids after 'Boundary id map').");
-      }
-
-      // The curved faces of body @p b, built as @p tria (shifted and
-      // rotated): the outer and inner curved faces of a generated segment, or
-      // a file mesh's 'Manifold boundary ids'; their sphere or cylinder
-      // about the placed 'Centre'.
-      template <int dim>
-      CurvedSurface<dim>
-      curved_surface(const BodyParameters     &body,
-                     const unsigned int        b,
-                     const Triangulation<dim> &tria)
-      {
-        CurvedSurface<dim> curved;
-        const bool         segment = body.shape == BodyShape::ball_segment ||
-                             body.shape == BodyShape::cylinder_segment;
-        if (body.manifold != CurvedShape::none && body.shape != BodyShape::file)
-          throw InputError(body_name(b) +
-                           ", parameter 'Manifold': it is for Shape = file; "
-                           "a generated shape has its curved surface "
-                           "already. Remove the entry.");
-        if (body.manifold == CurvedShape::none &&
-            !body.manifold_boundary_ids.empty())
-          throw InputError(body_name(b) +
-                           ", parameter 'Manifold boundary ids': it needs "
-                           "'Manifold' (sphere or cylinder) for Shape = "
-                           "file; remove it otherwise.");
-        if (!segment && body.manifold == CurvedShape::none)
-          return curved;
-        bool           cylinder = false;
-        Tensor<1, dim> axis; // along the cylinder's axis, 0 for a sphere
-        if (segment)
-          {
-            curved.boundary_ids.push_back(boundary_id_of(body, b, 0));
-            const unsigned int inner = inner_face_group(body, dim);
-            if (inner != numbers::invalid_unsigned_int)
-              curved.boundary_ids.push_back(boundary_id_of(body, b, inner));
-            cylinder = dim == 3 && body.shape == BodyShape::cylinder_segment;
-            axis[dim - 1] = cylinder ? 1. : 0.;
-          }
-        else
-          {
-            if (body.manifold_boundary_ids.empty())
-              throw InputError(body_name(b) +
-                               ", parameter 'Manifold boundary ids': list "
-                               "the boundary ids of the faces on the "
-                               "'Manifold' surface.");
-            curved.boundary_ids.assign(body.manifold_boundary_ids.begin(),
-                                       body.manifold_boundary_ids.end());
-            cylinder = body.manifold == CurvedShape::cylinder;
-            if (cylinder && dim == 2)
-              throw InputError(body_name(b) +
-                               ", parameter 'Manifold': cylinder is for 3D "
-                               "meshes; a circle in 2D is 'sphere'.");
-            if (cylinder)
-              {
-                const Point<dim> a =
-                  point_of<dim>(body.manifold_axis, b, "Manifold axis");
-                if (a.norm() == 0)
-                  throw InputError(body_name(b) +
-                                   ", parameter 'Manifold axis': give a "
-                                   "nonzero direction.");
-                axis = a / a.norm();
-              }
-          }
-        const BodyRotation<dim> rotation(body, b);
-        const Point<dim>        centre =
-          rotation(point_of<dim>(body.centre, b, "Centre") +
-                   point_of<dim>(body.shift, b, "Shift"));
-        axis = rotation.direction(axis);
-        if (!segment)
-          check_curved_faces(tria, curved.boundary_ids, centre, axis, b);
-        if (cylinder)
-          curved.manifold =
-            std::make_unique<CylindricalManifold<dim>>(axis, centre);
-        else
-          curved.manifold = std::make_unique<SphericalManifold<dim>>(centre);
         return curved;
       }
+
+
       // Appends the coarse cells of a body to the joined mesh's lists.
       template <int dim>
       void
@@ -378,8 +240,10 @@ namespace Signorini
 
     template <int dim>
     void
-    create_mesh(const Parameters                          &parameters,
-                parallel::distributed::Triangulation<dim> &triangulation)
+    create_mesh(
+      const Parameters                                           &parameters,
+      const std::vector<std::unique_ptr<Shapes::Interface<dim>>> &shapes,
+      parallel::distributed::Triangulation<dim>                  &triangulation)
     {
       std::vector<Point<dim>>    vertices;
       std::vector<CellData<dim>> cells;
@@ -394,23 +258,19 @@ namespace Signorini
       std::vector<std::unique_ptr<Triangulation<dim>>> coarse;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          Triangulation<dim> body_tria;
-          check_subdivisions(bodies[b], b, parameters);
-          build_body(bodies[b], b, parameters.input_directory, body_tria);
-          check_cells(body_tria, b, bodies[b]);
+          Triangulation<dim>         body_tria;
+          Shapes::CurvedSurface<dim> curved =
+            build_body(bodies[b], b, *shapes[b], parameters, body_tria);
           add_mesh_parts(body_tria, b, parts);
           coarse.push_back(std::make_unique<Triangulation<dim>>());
           coarse.back()->copy_triangulation(body_tria);
 
-          // Curved surfaces: their manifold on the curved faces. A generated
-          // segment's few coarse cells also get transfinite interpolation in
-          // the volume (initialised on the joined mesh), so that its interior
-          // nodes follow the surface; a file mesh's cells stay flat (the
-          // transfinite chart fails on irregular cells, e.g. hexahedra split
-          // from tetrahedra, and a file mesh is fine enough without it).
-          CurvedSurface<dim> curved = curved_surface(bodies[b], b, body_tria);
+          // Curved surfaces: their manifold on the curved faces; where the
+          // shape asks for it (a generated segment's few coarse cells), also
+          // transfinite interpolation in the volume (initialised on the
+          // joined mesh), so that its interior nodes follow the surface.
           const types::manifold_id surface = 2 * b + 1, volume = 2 * b + 2;
-          if (curved.manifold && bodies[b].shape != BodyShape::file)
+          if (curved.manifold && curved.cells_follow)
             {
               body_tria.set_all_manifold_ids(volume);
               volume_manifolds.push_back(volume);
@@ -419,7 +279,7 @@ namespace Signorini
             body_tria.set_all_manifold_ids(numbers::flat_manifold_id);
           if (curved.manifold)
             {
-              for (const auto id : curved.boundary_ids)
+              for (const auto id : curved.faces)
                 body_tria.set_all_manifold_ids_on_boundary(id, surface);
               manifolds[surface] = std::move(curved.manifold);
             }
@@ -469,9 +329,11 @@ namespace Signorini
 
     template void
     create_mesh<2>(const Parameters &,
+                   const std::vector<std::unique_ptr<Shapes::Interface<2>>> &,
                    parallel::distributed::Triangulation<2> &);
     template void
     create_mesh<3>(const Parameters &,
+                   const std::vector<std::unique_ptr<Shapes::Interface<3>>> &,
                    parallel::distributed::Triangulation<3> &);
     template std::set<types::boundary_id>
     boundary_ids<2>(const Triangulation<2> &);

@@ -13,7 +13,6 @@ ALLOWED = {
     "source/contact/surfaces.cc:Surfaces<dim>::number_multipliers": 147,
     "source/contact/segmentation.cc:segment_slave_face<3>": 146,
     "source/driver/simulation_adaptivity.cc:Simulation<dim>::adapt_mesh": 134,
-    "source/base/parameters_geometry.cc:BodyParameters::declare_parameters": 132,
     "source/contact/jacobian_check.cc:check_jacobian": 126,
     "source/solver/newton_solver.cc:NewtonSolver::solve": 125,
     "source/contact/output.cc:Output<dim>::summary": 110,

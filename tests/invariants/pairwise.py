@@ -188,9 +188,9 @@ class Scene:
     def block(self, b, lower, upper, cells):
         g = "Geometry/Body %d/" % b
         self.set(g + "Shape", "block")
-        self.set(g + "Lower corner", ", ".join(self.length(x) for x in lower[: self.dim]))
-        self.set(g + "Upper corner", ", ".join(self.length(x) for x in upper[: self.dim]))
-        self.set(g + "Subdivisions", ", ".join(cells[: self.dim]))
+        self.set(g + "Block/Lower corner", ", ".join(self.length(x) for x in lower[: self.dim]))
+        self.set(g + "Block/Upper corner", ", ".join(self.length(x) for x in upper[: self.dim]))
+        self.set(g + "Block/Subdivisions", ", ".join(cells[: self.dim]))
         if self.turned:
             self.set(g + "Rotation angle", 90)
 

@@ -6,7 +6,10 @@
 // components, selections).
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
 #include <deal.II/base/utilities.h>
+
+#include <signorini/base/errors.h>
 
 #include <initializer_list>
 #include <string>
@@ -41,6 +44,42 @@ namespace Signorini
     point_pattern(const unsigned int min = 0)
     {
       return Patterns::List(Patterns::Double(), min, 3, ",");
+    }
+
+    /** A point of the first dim of @p values (more are ignored); throws
+     * InputError naming @p entry if there are fewer. */
+    template <int dim>
+    Point<dim>
+    point_of(const std::vector<double> &values, const std::string &entry)
+    {
+      if (values.size() < dim)
+        throw InputError("parameter '" + entry + "': give " +
+                         std::to_string(dim) + " coordinates.");
+      Point<dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = values[d];
+      return p;
+    }
+
+    /** point_of() of the numbers of entry @p entry of @p prm. */
+    template <int dim>
+    Point<dim>
+    parse_point(const ParameterHandler &prm, const std::string &entry)
+    {
+      return point_of<dim>(to_doubles(prm.get(entry)), entry);
+    }
+
+    /** parse_point() for a direction, normalised; zero is an input error. */
+    template <int dim>
+    Tensor<1, dim>
+    parse_direction(const ParameterHandler &prm, const std::string &entry)
+    {
+      const Tensor<1, dim> v = parse_point<dim>(prm, entry);
+      if (v.norm() == 0.)
+        throw InputError("parameter '" + entry + "': give " +
+                         std::to_string(dim) +
+                         " coordinates of a nonzero vector.");
+      return v / v.norm();
     }
 
     /**

@@ -45,49 +45,16 @@ namespace Signorini
     }
   };
 
-  enum class BodyShape
-  {
-    block,
-    ball_segment,
-    cylinder_segment,
-    file
-  };
-
-  enum class Segment
-  {
-    full,
-    half,
-    quarter
-  };
-
-  /** The exact surface some faces of a file mesh lie on ('Manifold'). */
-  enum class CurvedShape
-  {
-    none,
-    sphere,
-    cylinder
-  };
-
-  /** One body: a generated shape or a mesh file (subsection Geometry/Body k).
-   */
+  /** One body (subsection Geometry/Body k): its shape, which reads its
+   * own subsection, and what every body shares: the names of its faces, its
+   * material id and its placement. */
   struct BodyParameters
   {
-    BodyShape                            shape;
-    std::vector<double>                  lower_corner, upper_corner;
-    std::vector<unsigned int>            subdivisions;
-    std::vector<double>                  centre;
-    double                               radius;
-    double                               inner_radius; // 0: solid
-    Segment                              segment;
-    double                               length;
-    std::string                          mesh_file;
-    std::map<unsigned int, unsigned int> boundary_id_map;
-    CurvedShape                          manifold; // file meshes
-    std::vector<unsigned int>            manifold_boundary_ids;
-    std::vector<double>                  manifold_axis;
-    std::vector<unsigned int>            boundary_ids;
-    int                                  material_id;
-    std::vector<double>                  shift;
+    std::string shape; // a name of the Shape plug-in family; its own
+                       // parameters are read by Geometry::Shapes
+    std::vector<unsigned int> boundary_ids;
+    int                       material_id;
+    std::vector<double>       shift;
     // Rotation after the shift: angle [rad], axis (3D), about a point.
     double              rotation_angle;
     std::vector<double> rotation_axis, rotation_centre;

@@ -144,13 +144,15 @@ namespace Signorini
     /**
      * The plug-in families whose selection entry and models' subsections
      * the parameters declare: 'Materials/Material k/Model', 'Contact/Pair
-     * k/Master' (rigid obstacles), 'Output/Postprocessors'.
+     * k/Master' (rigid obstacles), 'Output/Postprocessors', 'Geometry/Body
+     * k/Shape'.
      */
     enum class Family
     {
       material,
       obstacle,
-      postprocessor
+      postprocessor,
+      shape
     };
 
     /**

@@ -13,6 +13,7 @@
 #include <signorini/driver/equilibrium_problem.h>
 #include <signorini/driver/load_step.h>
 #include <signorini/driver/results.h>
+#include <signorini/geometry/shapes/interface.h>
 #include <signorini/postprocess/interface.h>
 #include <signorini/postprocess/run_report.h>
 #include <signorini/solver/linear_solver.h>
@@ -161,12 +162,14 @@ namespace Signorini
     ConditionalOStream pcout; // per-step output (off when quiet)
     ConditionalOStream sout;  // end-of-run summary (always, rank 0)
     // The plug-ins the parameters select, created (and their parameters
-    // checked) before anything that reports at its destruction: the
-    // materials per material id and the rigid obstacle of every pair
-    // (nullptr for a meshed master), handed to the contact problem.
-    Bulk::Materials<dim>                                    materials;
-    std::vector<std::unique_ptr<Obstacles::Interface<dim>>> obstacles;
-    TimerOutput                                             timer;
+    // checked) before anything that reports at its destruction: the shape
+    // of every body, the materials per material id and the rigid obstacle
+    // of every pair (nullptr for a meshed master), handed to the contact
+    // problem.
+    std::vector<std::unique_ptr<Geometry::Shapes::Interface<dim>>> shapes;
+    Bulk::Materials<dim>                                           materials;
+    std::vector<std::unique_ptr<Obstacles::Interface<dim>>>        obstacles;
+    TimerOutput                                                    timer;
 
     DiscreteSystem<dim> system;
     // Dirichlet values, loads and supports, functions of (x, t).

@@ -46,13 +46,14 @@ namespace Signorini
     std::string
     grid_in_diagnostics(const std::string &captured);
 
-    /** InputError if the generated block @p body (number @p b) would
-     * have more cells than 'Geometry/Maximum number of cells', before it
-     * is built. */
+    /** InputError if a body's shape would have @p cells cells, more than
+     * 'Geometry/Maximum number of cells', before it is built; @p where
+     * names the entry @p entry that sets the count. */
     void
-    check_subdivisions(const BodyParameters &body,
-                       const unsigned int    b,
-                       const Parameters     &parameters);
+    check_body_cells(const double       cells,
+                     const std::string &where,
+                     const std::string &entry,
+                     const Parameters  &parameters);
 
     /**
      * Refuses 'Global refinements' that would refine @p n_coarse_cells

@@ -4,12 +4,17 @@
 #include <deal.II/distributed/tria.h>
 
 #include <signorini/base/parameters.h>
+#include <signorini/geometry/shapes/interface.h>
+
+#include <memory>
+#include <vector>
 
 #include <set>
 
 /**
- * Builds the mesh of a scene: every body (generated block, ball or cylinder
- * segment, or a Gmsh/Abaqus file) is made on its own and the bodies are then
+ * Builds the mesh of a scene: every body is made on its own by its shape
+ * (geometry/shapes/: a generated block, ball or cylinder segment, a
+ * Gmsh/Abaqus file, or a user's shape), placed, and the bodies are then
  * joined into one coarse mesh WITHOUT merging coincident vertices, so bodies
  * touching at an interface stay separate components (a contact interface is
  * two boundaries, never shared nodes). Curved boundaries keep their manifolds
@@ -22,10 +27,14 @@ namespace Signorini
   {
     using namespace dealii;
 
+    /** The joined mesh of the bodies of @p parameters, body k made by
+     * @p shapes[k] (Shapes::make_shapes()). */
     template <int dim>
     void
-    create_mesh(const Parameters                          &parameters,
-                parallel::distributed::Triangulation<dim> &triangulation);
+    create_mesh(
+      const Parameters                                           &parameters,
+      const std::vector<std::unique_ptr<Shapes::Interface<dim>>> &shapes,
+      parallel::distributed::Triangulation<dim> &triangulation);
 
     /** All boundary ids of the coarse mesh (the same on every rank). */
     template <int dim>

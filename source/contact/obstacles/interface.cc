@@ -127,43 +127,10 @@ namespace Signorini
     }
 
 
-    template <int dim>
-    Point<dim>
-    parse_point(const ParameterHandler &prm, const std::string &entry)
-    {
-      const auto values = Utilities::string_to_double(
-        Utilities::split_string_list(prm.get(entry), ','));
-      if (values.size() < dim)
-        throw InputError("parameter '" + entry + "': give " +
-                         std::to_string(dim) + " coordinates.");
-      Point<dim> p;
-      for (unsigned int d = 0; d < dim; ++d)
-        p[d] = values[d];
-      return p;
-    }
-
-
-    template <int dim>
-    Tensor<1, dim>
-    parse_direction(const ParameterHandler &prm, const std::string &entry)
-    {
-      const Tensor<1, dim> v = parse_point<dim>(prm, entry);
-      if (v.norm() == 0.)
-        throw InputError("parameter '" + entry + "': give " +
-                         std::to_string(dim) +
-                         " coordinates of a nonzero vector.");
-      return v / v.norm();
-    }
-
-
 #define SIGNORINI_INSTANTIATE(dim)                                           \
   template class Interface<dim>;                                             \
   template std::vector<std::unique_ptr<Interface<dim>>> make_obstacles<dim>( \
-    const Parameters &, ParameterHandler &);                                 \
-  template Point<dim>     parse_point<dim>(const ParameterHandler &,         \
-                                       const std::string &);             \
-  template Tensor<1, dim> parse_direction<dim>(const ParameterHandler &,     \
-                                               const std::string &);
+    const Parameters &, ParameterHandler &);
     SIGNORINI_INSTANTIATE(2)
     SIGNORINI_INSTANTIATE(3)
 #undef SIGNORINI_INSTANTIATE

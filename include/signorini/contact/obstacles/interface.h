@@ -6,6 +6,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <signorini/base/parameter_helpers.h>
 #include <signorini/base/parameters.h>
 #include <signorini/base/plugins.h>
 #include <signorini/contact/obstacles/motion.h>
@@ -150,16 +151,10 @@ namespace Signorini
     std::vector<std::unique_ptr<Interface<dim>>>
     make_obstacles(const Parameters &parameters, ParameterHandler &prm);
 
-    /** A point of dim coordinates from "x, y[, z]" (more are ignored);
-     * throws InputError naming @p entry if there are fewer. */
-    template <int dim>
-    Point<dim>
-    parse_point(const ParameterHandler &prm, const std::string &entry);
-
-    /** parse_point() for a direction, normalised; zero is an input error. */
-    template <int dim>
-    Tensor<1, dim>
-    parse_direction(const ParameterHandler &prm, const std::string &entry);
+    /** A point of dim coordinates from an entry, and a direction
+     * (normalised, nonzero): base/parameter_helpers.h. */
+    using internal::parse_direction;
+    using internal::parse_point;
   } // namespace Obstacles
 } // namespace Signorini
 
