@@ -149,12 +149,34 @@ namespace Signorini
       const TrilinosWrappers::MPI::Vector        &weight_state,
       PointEvaluation                            &e)
     {
+      const unsigned int p = surfaces.slave_faces()[point.face].pair;
+      e.law                = coefficients.law(p);
+      e.fric               = e.law.mu > 0;
+      e.by_node            = node_statuses.by_node(p);
+      point_kinematics(point, cell_dofs, state, start, weight_state, e);
+      const bool pinned = law_input(point, e);
+      e.r               = e.by_node ? node_statuses.response(point, e.s) :
+                                      evaluate_contact_law(e.s, e.law);
+      node_friction(point, pinned, state, weight_state, e);
+      // The force f = (f . n) n turns with the normal (curvature); the
+      // gap needs nothing more: at the closest point dg/du = n exactly.
+      if (e.geometry_newton)
+        e.r.dforce_dd += (e.r.force * e.s.normal) * e.dn_du;
+    }
+
+
+    template <int dim>
+    void
+    Assembler<dim>::point_kinematics(
+      ContactPoint                               &point,
+      const std::vector<types::global_dof_index> &cell_dofs,
+      const TrilinosWrappers::MPI::Vector        &state,
+      const TrilinosWrappers::MPI::Vector        &start,
+      const TrilinosWrappers::MPI::Vector        &weight_state,
+      PointEvaluation                            &e)
+    {
       const auto        &face = surfaces.slave_faces()[point.face];
       const unsigned int p    = face.pair;
-      e.law                   = coefficients.law(p);
-      e.fric                  = e.law.mu > 0;
-      e.by_node               = node_statuses.by_node(p);
-
       // Point state (theory.md F2).
       e.n_e                          = face.u_local.size();
       e.n_l                          = face.node_local.size();
@@ -219,11 +241,21 @@ namespace Signorini
         s.gap = -1e30; // no master in reach: free
       s.slip = e.du_e - du_m;
       s.slip -= (s.slip * s.normal) * s.normal;
+    }
 
-      s.freeze_contact        = point.newton.freeze_contact;
-      s.frozen_slip_direction = point.newton.frozen_slip_direction;
-      s.freeze_stick          = point.newton.freeze_stick;
-      s.release               = point.newton.release;
+
+    template <int dim>
+    bool
+    Assembler<dim>::law_input(const ContactPoint &point,
+                              PointEvaluation    &e) const
+    {
+      const auto                &face = surfaces.slave_faces()[point.face];
+      const std::vector<double> &psi  = point.psi;
+      auto                      &s    = e.s;
+      s.freeze_contact                = point.newton.freeze_contact;
+      s.frozen_slip_direction         = point.newton.frozen_slip_direction;
+      s.freeze_stick                  = point.newton.freeze_stick;
+      s.release                       = point.newton.release;
       // A point whose multiplier nodes are all excluded from contact by a
       // Dirichlet condition (theory.md F8) carries no contact force: their
       // multipliers are held at zero, and the plain law would act there as
@@ -263,9 +295,24 @@ namespace Signorini
           for (unsigned int k = 0; k < dim - 1; ++k)
             s.held[k][k] = 1;
         }
-      e.r = e.by_node ? node_statuses.response(point, s) :
-                        evaluate_contact_law(s, e.law);
+      return pinned;
+    }
 
+
+    template <int dim>
+    void
+    Assembler<dim>::node_friction(
+      const ContactPoint                  &point,
+      const bool                           pinned,
+      const TrilinosWrappers::MPI::Vector &state,
+      const TrilinosWrappers::MPI::Vector &weight_state,
+      PointEvaluation                     &e)
+    {
+      const auto                &face  = surfaces.slave_faces()[point.face];
+      const unsigned int         p     = face.pair;
+      const std::vector<double> &psi   = point.psi;
+      const std::vector<double> &psi_c = point.psi_lambda;
+      const auto                &s     = e.s;
       // Friction status per node: the friction force of the multipliers,
       // -mu lambda_l T Lambda_l of each node with active friction
       // interpolated like lambda (theory.md, "Friction status per node").
@@ -307,10 +354,6 @@ namespace Signorini
             for (unsigned int k = 0; k < dim - 1; ++k)
               e.r.force += -e.law.mu * psi_c[l] * e.node_data[l].lambda *
                            e.node_data[l].Lambda[k] * s.tangents[k];
-      // The force f = (f . n) n turns with the normal (curvature); the
-      // gap needs nothing more: at the closest point dg/du = n exactly.
-      if (e.geometry_newton)
-        e.r.dforce_dd += (e.r.force * s.normal) * e.dn_du;
     }
 
 

@@ -24,6 +24,69 @@ namespace Signorini
       {
         return i < n_u ? 0 : (i < n_u + n_l ? 1 : 2);
       }
+
+
+      // Step sizes per block: 1e-6 of the block's largest magnitude, never
+      // below 1e-6 of the floor, so that a block that is zero up to
+      // round-off is not perturbed by round-off.
+      std::array<double, 3>
+      step_sizes(const TrilinosWrappers::MPI::Vector &state,
+                 const IndexSet                      &owned,
+                 const types::global_dof_index        n_u,
+                 const types::global_dof_index        n_l,
+                 const std::array<double, 3>         &floor,
+                 const MPI_Comm                       comm)
+      {
+        std::array<double, 3> scale = {{0, 0, 0}};
+        for (const auto i : owned)
+          {
+            double &s = scale[block_of(i, n_u, n_l)];
+            s         = std::max(s, std::abs(state[i]));
+          }
+        for (unsigned int b = 0; b < 3; ++b)
+          scale[b] =
+            1e-6 * std::max(Utilities::MPI::max(scale[b], comm), floor[b]);
+        return scale;
+      }
+
+
+      // The owned constrained DoFs that follow each DoF (its share w in
+      // their constraint lines: a hanging node, a multiplier line such as
+      // a . Lambda = 0): the assembled matrix is condensed, so its column j
+      // is the derivative along the lines, and the perturbation of j moves
+      // them by w delta.
+      std::map<types::global_dof_index,
+               std::vector<std::pair<types::global_dof_index, double>>>
+      constraint_followers(const AffineConstraints<double> &constraints,
+                           const IndexSet                  &owned)
+      {
+        std::map<types::global_dof_index,
+                 std::vector<std::pair<types::global_dof_index, double>>>
+          followers;
+        for (const auto &line : constraints.get_lines())
+          if (owned.is_element(line.index))
+            for (const auto &[k, w] : line.entries)
+              followers[k].emplace_back(line.index, w);
+        return followers;
+      }
+
+      // The worst column difference relative to the largest column of the
+      // same block: a column that is zero up to round-off has a
+      // finite-difference column of pure noise, eps |r| / h, which must not
+      // count.
+      void
+      judge_columns(
+        const std::vector<std::pair<unsigned int, double>> &differences,
+        const std::array<double, 3>                        &block_size,
+        JacobianCheckResult                                &result)
+      {
+        for (const auto &[b, d] : differences)
+          if (block_size[b] > 0)
+            {
+              result.worst = std::max(result.worst, d / block_size[b]);
+              ++result.n_checked;
+            }
+      }
     } // namespace
 
 
@@ -58,18 +121,8 @@ namespace Signorini
       // differentiate them (doc/theory.md section 3.2).
       const TrilinosWrappers::MPI::Vector weight_state = state;
 
-      // Step sizes: 1e-6 of the block's largest magnitude, never below
-      // 1e-6 of the floor, so that a block that is zero up to round-off is
-      // not perturbed by round-off.
-      std::array<double, 3> scale = {{0, 0, 0}};
-      for (const auto i : owned)
-        {
-          double &s = scale[block_of(i, n_u, n_l)];
-          s         = std::max(s, std::abs(state[i]));
-        }
-      for (unsigned int b = 0; b < 3; ++b)
-        scale[b] =
-          1e-6 * std::max(Utilities::MPI::max(scale[b], comm), floor[b]);
+      const std::array<double, 3> scale =
+        step_sizes(state, owned, n_u, n_l, floor, comm);
 
       // The base state with the owned layout, copied entry by entry: an
       // assignment between vectors of different layouts may take a
@@ -78,19 +131,8 @@ namespace Signorini
       for (const auto i : owned)
         base[i] = state[i];
       base.compress(VectorOperation::insert);
-      // The owned constrained DoFs that follow each DoF (its share w in
-      // their constraint lines: a hanging node, a multiplier line such as
-      // a . Lambda = 0): the assembled matrix is condensed, so its column j
-      // is the derivative along the lines, and the perturbation of j moves
-      // them by w delta.
-      std::map<types::global_dof_index,
-               std::vector<std::pair<types::global_dof_index, double>>>
-        followers;
-      for (const auto &line : constraints.get_lines())
-        if (owned.is_element(line.index))
-          for (const auto &[k, w] : line.entries)
-            followers[k].emplace_back(line.index, w);
-      const auto evaluate = [&](const types::global_dof_index  j,
+      const auto followers = constraint_followers(constraints, owned);
+      const auto evaluate  = [&](const types::global_dof_index  j,
                                 const double                   delta,
                                 TrilinosWrappers::MPI::Vector &r) {
         TrilinosWrappers::MPI::Vector perturbed = base;
@@ -149,15 +191,7 @@ namespace Signorini
           column -= r_plus;
           differences.emplace_back(b, column.linfty_norm());
         }
-      // Relative to the largest column of the same block: a column that is
-      // zero up to round-off has a finite-difference column of pure noise,
-      // eps |r| / h, which must not count.
-      for (const auto &[b, d] : differences)
-        if (block_size[b] > 0)
-          {
-            result.worst = std::max(result.worst, d / block_size[b]);
-            ++result.n_checked;
-          }
+      judge_columns(differences, block_size, result);
       // The state and the statuses of the base state back.
       state = base;
       r0    = 0;

@@ -51,6 +51,28 @@ namespace Signorini
             return false;
           });
       }
+
+
+      // The pair summaries' sums and extremes over all ranks.
+      template <class Summary>
+      void
+      sum_over_ranks(std::vector<Summary> &result, const MPI_Comm comm)
+      {
+        for (auto &r : result)
+          {
+            r.force = Utilities::MPI::sum(r.force, comm);
+            r.p_max = Utilities::MPI::max(r.p_max, comm);
+            r.area  = Utilities::MPI::sum(r.area, comm);
+            r.normal_force_local =
+              Utilities::MPI::sum(r.normal_force_local, comm);
+            r.tangential_force_local =
+              Utilities::MPI::sum(r.tangential_force_local, comm);
+            r.n_points  = Utilities::MPI::sum(r.n_points, comm);
+            r.n_contact = Utilities::MPI::sum(r.n_contact, comm);
+            r.n_stick   = Utilities::MPI::sum(r.n_stick, comm);
+            r.n_slip    = Utilities::MPI::sum(r.n_slip, comm);
+          }
+      }
     } // namespace
 
 
@@ -70,6 +92,38 @@ namespace Signorini
         , node_statuses(node_statuses)
         , comm(comm)
     {
+    }
+
+
+    template <int dim>
+    void
+    Output<dim>::add_node_forces(
+      std::vector<TrilinosWrappers::MPI::Vector> &nodal,
+      std::vector<PairSummary>                   &result) const
+    {
+      for (auto &v : nodal)
+        v.compress(VectorOperation::add);
+      // Each owned node once (the owner adds it).
+      std::set<types::global_dof_index> seen;
+      for (const auto &face : surfaces.slave_faces())
+        if (node_statuses.by_node(face.pair))
+          for (const auto dof : face.lambda_dofs)
+            if (surfaces.owned_multipliers().is_element(dof) &&
+                seen.insert(dof).second)
+              {
+                Tensor<1, dim> F, n;
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    F[c] = nodal[c][dof];
+                    n[c] = nodal[dim + c][dof];
+                  }
+                if (n.norm() == 0)
+                  continue;
+                n /= n.norm();
+                auto &r = result[face.pair];
+                r.normal_force_local += std::abs(F * n);
+                r.tangential_force_local += (F - (F * n) * n).norm();
+              }
     }
 
 
@@ -131,31 +185,7 @@ namespace Signorini
             point.status == PointStatus::slip && point.friction_active;
         }
       if (node_statuses.any())
-        {
-          for (auto &v : nodal)
-            v.compress(VectorOperation::add);
-          // Each owned node once (the owner adds it).
-          std::set<types::global_dof_index> seen;
-          for (const auto &face : surfaces.slave_faces())
-            if (node_statuses.by_node(face.pair))
-              for (const auto dof : face.lambda_dofs)
-                if (surfaces.owned_multipliers().is_element(dof) &&
-                    seen.insert(dof).second)
-                  {
-                    Tensor<1, dim> F, n;
-                    for (unsigned int c = 0; c < dim; ++c)
-                      {
-                        F[c] = nodal[c][dof];
-                        n[c] = nodal[dim + c][dof];
-                      }
-                    if (n.norm() == 0)
-                      continue;
-                    n /= n.norm();
-                    auto &r = result[face.pair];
-                    r.normal_force_local += std::abs(F * n);
-                    r.tangential_force_local += (F - (F * n) * n).norm();
-                  }
-        }
+        add_node_forces(nodal, result);
       for (unsigned int p = 0; p < result.size(); ++p)
         if (pairing.obstacle(p))
           {
@@ -170,20 +200,7 @@ namespace Signorini
           r.n_paired  = Utilities::MPI::sum(r.n_paired, comm);
           r.face_size = surfaces.pair_scales().face_size[p];
         }
-      for (auto &r : result)
-        {
-          r.force = Utilities::MPI::sum(r.force, comm);
-          r.p_max = Utilities::MPI::max(r.p_max, comm);
-          r.area  = Utilities::MPI::sum(r.area, comm);
-          r.normal_force_local =
-            Utilities::MPI::sum(r.normal_force_local, comm);
-          r.tangential_force_local =
-            Utilities::MPI::sum(r.tangential_force_local, comm);
-          r.n_points  = Utilities::MPI::sum(r.n_points, comm);
-          r.n_contact = Utilities::MPI::sum(r.n_contact, comm);
-          r.n_stick   = Utilities::MPI::sum(r.n_stick, comm);
-          r.n_slip    = Utilities::MPI::sum(r.n_slip, comm);
-        }
+      sum_over_ranks(result, comm);
       return result;
     }
 

@@ -220,6 +220,187 @@ namespace Signorini
     }
 
 
+    namespace
+    {
+      // Q intersected with the convex polygon C.
+      Polygon
+      intersect(Polygon Q, const Polygon &C)
+      {
+        for (unsigned int e = 0; e < C.size() && Q.size() >= 3; ++e)
+          Q = clip(Q, C[e], C[(e + 1) % C.size()], +1);
+        return Q;
+      }
+
+
+      // Q minus convex C as disjoint convex pieces, appended to @p out:
+      // for edge e, the part of Q inside edges 0..e-1 and outside edge e.
+      void
+      subtract(Polygon Q, const Polygon &C, std::vector<Polygon> &out)
+      {
+        for (unsigned int e = 0; e < C.size(); ++e)
+          {
+            const Point<2> &a = C[e], &b = C[(e + 1) % C.size()];
+            const Polygon   O = clip(Q, a, b, -1);
+            if (O.size() >= 3 && signed_area(O) >= sliver)
+              out.push_back(O);
+            Q = clip(Q, a, b, +1);
+            if (Q.size() < 3 || signed_area(Q) < sliver)
+              break;
+          }
+      }
+
+
+      // The master faces @p candidates carried onto the slave face along
+      // its centre normal @p d, as convex CCW parts of the unit square's
+      // plane with their master index.
+      std::vector<std::pair<Polygon, int>>
+      master_clips(const std::vector<Point<3>>                      &slave,
+                   const std::vector<const std::vector<Point<3>> *> &candidates,
+                   const Tensor<1, 3>                               &d,
+                   const Polygon                                    &square)
+      {
+        // The master faces carried onto the slave face, as convex CCW parts.
+        std::vector<std::pair<Polygon, int>> clips;
+        for (unsigned int m = 0; m < candidates.size(); ++m)
+          {
+            // Vertices (0,0), (1,0), (1,1), (0,1) of the master face in
+            // FE_Q<2> order 0, 1, 3, 2.
+            Polygon P;
+            bool    ok = true;
+            for (const unsigned int k : {0u, 1u, 3u, 2u})
+              {
+                const auto r =
+                  intersect_line_with_face<3>(slave, (*candidates[m])[k], d);
+                ok &= r.converged;
+                P.push_back(r.xi);
+              }
+            if (!ok)
+              continue;
+            const double A = signed_area(P);
+            if (std::abs(A) < sliver)
+              continue;
+            if (A < 0)
+              std::reverse(P.begin(), P.end());
+            if (!boxes_overlap(P, square))
+              continue;
+            for (auto &C : convex_parts(P))
+              clips.emplace_back(std::move(C), static_cast<int>(m));
+          }
+
+        return clips;
+      }
+
+
+      // The unit square cut into convex pieces, each with the master face
+      // over it (-1: none).
+      std::vector<std::pair<Polygon, int>>
+      square_pieces(const std::vector<std::pair<Polygon, int>> &clips,
+                    const Polygon                              &square)
+      {
+        // The usual case, master faces that do not overlap one another: each
+        // covers (unit square) x (its polygon), one convex piece.
+        std::vector<std::pair<Polygon, int>> pieces;
+        double                               covered = 0;
+        for (const auto &[C, m] : clips)
+          {
+            Polygon I = intersect(square, C);
+            if (I.size() >= 3 && signed_area(I) >= sliver)
+              {
+                covered += signed_area(I);
+                pieces.emplace_back(std::move(I), m);
+              }
+          }
+        if (covered > 1 + 1e-10)
+          {
+            // Overlapping master faces (a folded master surface): partition
+            // the square in turn, so that each part counts once (the first
+            // master face covering it).
+            pieces.clear();
+            std::vector<Polygon> free = {square};
+            for (const auto &[C, m] : clips)
+              {
+                std::vector<Polygon> still;
+                for (const auto &Q : free)
+                  {
+                    Polygon I =
+                      boxes_overlap(Q, C) ? intersect(Q, C) : Polygon();
+                    if (I.size() < 3 || signed_area(I) < sliver)
+                      {
+                        still.push_back(Q);
+                        continue;
+                      }
+                    pieces.emplace_back(std::move(I), m);
+                    subtract(Q, C, still);
+                  }
+                free.swap(still);
+              }
+            for (auto &Q : free)
+              pieces.emplace_back(std::move(Q), -1);
+          }
+        else if (covered < 1 - 1e-10)
+          {
+            // Part of the face has no master (the edge of the master
+            // surface): the rest of the square, in convex pieces.
+            std::vector<Polygon> free = {square};
+            for (const auto &[C, m] : clips)
+              {
+                std::vector<Polygon> still;
+                for (const auto &Q : free)
+                  {
+                    // Q is cut only where C covers a part of it: a master
+                    // face that merely touches Q along an edge (its box
+                    // overlapping Q's by round-off) must not split Q, or the
+                    // pieces, and so the points, follow the round-off of the
+                    // iterate (which differs with the MPI partition).
+                    const Polygon I =
+                      boxes_overlap(Q, C) ? intersect(Q, C) : Polygon();
+                    if (I.size() < 3 || signed_area(I) < sliver)
+                      still.push_back(Q);
+                    else
+                      subtract(Q, C, still);
+                  }
+                free.swap(still);
+              }
+            for (auto &Q : free)
+              pieces.emplace_back(std::move(Q), -1);
+          }
+
+        return pieces;
+      }
+
+
+      // Quadrature points of the pieces: each fanned into triangles with
+      // @p n_points Witherden-Vincent points.
+      Segmentation<3>
+      triangulate(const std::vector<std::pair<Polygon, int>> &pieces,
+                  const unsigned int                          n_points)
+      {
+        Segmentation<3>                   result;
+        const QWitherdenVincentSimplex<2> triangle(n_points);
+        for (const auto &[piece, master] : pieces)
+          {
+            const Polygon P = canonical(simplified(piece));
+            ++result.n_pieces;
+            for (unsigned int i = 1; i + 1 < P.size(); ++i)
+              {
+                const Tensor<1, 2> e1 = P[i] - P[0], e2 = P[i + 1] - P[0];
+                const double       J = cross(e1, e2); // twice the area
+                if (J < 2 * sliver)
+                  continue;
+                for (unsigned int q = 0; q < triangle.size(); ++q)
+                  {
+                    const Point<2> &r = triangle.point(q);
+                    result.points.push_back(P[0] + r[0] * e1 + r[1] * e2);
+                    result.weights.push_back(J * triangle.weight(q));
+                    result.master.push_back(master);
+                  }
+              }
+          }
+        return result;
+      }
+    } // namespace
+
+
     template <>
     Segmentation<3>
     segment_slave_face<3>(
@@ -232,145 +413,8 @@ namespace Signorini
                                    Point<2>(1, 0),
                                    Point<2>(1, 1),
                                    Point<2>(0, 1)};
-
-      // The master faces carried onto the slave face, as convex CCW parts.
-      std::vector<std::pair<Polygon, int>> clips;
-      for (unsigned int m = 0; m < candidates.size(); ++m)
-        {
-          // Vertices (0,0), (1,0), (1,1), (0,1) of the master face in
-          // FE_Q<2> order 0, 1, 3, 2.
-          Polygon P;
-          bool    ok = true;
-          for (const unsigned int k : {0u, 1u, 3u, 2u})
-            {
-              const auto r =
-                intersect_line_with_face<3>(slave, (*candidates[m])[k], d);
-              ok &= r.converged;
-              P.push_back(r.xi);
-            }
-          if (!ok)
-            continue;
-          const double A = signed_area(P);
-          if (std::abs(A) < sliver)
-            continue;
-          if (A < 0)
-            std::reverse(P.begin(), P.end());
-          if (!boxes_overlap(P, square))
-            continue;
-          for (auto &C : convex_parts(P))
-            clips.emplace_back(std::move(C), static_cast<int>(m));
-        }
-
-      const auto intersect = [](Polygon Q, const Polygon &C) {
-        for (unsigned int e = 0; e < C.size() && Q.size() >= 3; ++e)
-          Q = clip(Q, C[e], C[(e + 1) % C.size()], +1);
-        return Q;
-      };
-      // Q minus convex C as disjoint convex pieces: for edge e, the part of
-      // Q inside edges 0..e-1 and outside edge e.
-      const auto subtract =
-        [](Polygon Q, const Polygon &C, std::vector<Polygon> &out) {
-          for (unsigned int e = 0; e < C.size(); ++e)
-            {
-              const Point<2> &a = C[e], &b = C[(e + 1) % C.size()];
-              const Polygon   O = clip(Q, a, b, -1);
-              if (O.size() >= 3 && signed_area(O) >= sliver)
-                out.push_back(O);
-              Q = clip(Q, a, b, +1);
-              if (Q.size() < 3 || signed_area(Q) < sliver)
-                break;
-            }
-        };
-
-      // The usual case, master faces that do not overlap one another: each
-      // covers (unit square) x (its polygon), one convex piece.
-      std::vector<std::pair<Polygon, int>> pieces;
-      double                               covered = 0;
-      for (const auto &[C, m] : clips)
-        {
-          Polygon I = intersect(square, C);
-          if (I.size() >= 3 && signed_area(I) >= sliver)
-            {
-              covered += signed_area(I);
-              pieces.emplace_back(std::move(I), m);
-            }
-        }
-      if (covered > 1 + 1e-10)
-        {
-          // Overlapping master faces (a folded master surface): partition
-          // the square in turn, so that each part counts once (the first
-          // master face covering it).
-          pieces.clear();
-          std::vector<Polygon> free = {square};
-          for (const auto &[C, m] : clips)
-            {
-              std::vector<Polygon> still;
-              for (const auto &Q : free)
-                {
-                  Polygon I = boxes_overlap(Q, C) ? intersect(Q, C) : Polygon();
-                  if (I.size() < 3 || signed_area(I) < sliver)
-                    {
-                      still.push_back(Q);
-                      continue;
-                    }
-                  pieces.emplace_back(std::move(I), m);
-                  subtract(Q, C, still);
-                }
-              free.swap(still);
-            }
-          for (auto &Q : free)
-            pieces.emplace_back(std::move(Q), -1);
-        }
-      else if (covered < 1 - 1e-10)
-        {
-          // Part of the face has no master (the edge of the master
-          // surface): the rest of the square, in convex pieces.
-          std::vector<Polygon> free = {square};
-          for (const auto &[C, m] : clips)
-            {
-              std::vector<Polygon> still;
-              for (const auto &Q : free)
-                {
-                  // Q is cut only where C covers a part of it: a master
-                  // face that merely touches Q along an edge (its box
-                  // overlapping Q's by round-off) must not split Q, or the
-                  // pieces, and so the points, follow the round-off of the
-                  // iterate (which differs with the MPI partition).
-                  const Polygon I =
-                    boxes_overlap(Q, C) ? intersect(Q, C) : Polygon();
-                  if (I.size() < 3 || signed_area(I) < sliver)
-                    still.push_back(Q);
-                  else
-                    subtract(Q, C, still);
-                }
-              free.swap(still);
-            }
-          for (auto &Q : free)
-            pieces.emplace_back(std::move(Q), -1);
-        }
-
-      Segmentation<3>                   result;
-      const QWitherdenVincentSimplex<2> triangle(n_points);
-      for (const auto &[piece, master] : pieces)
-        {
-          const Polygon P = canonical(simplified(piece));
-          ++result.n_pieces;
-          for (unsigned int i = 1; i + 1 < P.size(); ++i)
-            {
-              const Tensor<1, 2> e1 = P[i] - P[0], e2 = P[i + 1] - P[0];
-              const double       J = cross(e1, e2); // twice the area
-              if (J < 2 * sliver)
-                continue;
-              for (unsigned int q = 0; q < triangle.size(); ++q)
-                {
-                  const Point<2> &r = triangle.point(q);
-                  result.points.push_back(P[0] + r[0] * e1 + r[1] * e2);
-                  result.weights.push_back(J * triangle.weight(q));
-                  result.master.push_back(master);
-                }
-            }
-        }
-      return result;
+      const auto         clips  = master_clips(slave, candidates, d, square);
+      return triangulate(square_pieces(clips, square), n_points);
     }
   } // namespace Contact
 } // namespace Signorini

@@ -37,6 +37,90 @@ namespace Signorini
     using internal::writable_vector;
 
 
+    namespace
+    {
+      // The mean of a slave node's face normals, summed in a fixed order
+      // (the same on any rank count).
+      template <int dim>
+      Tensor<1, dim>
+      mean_normal(std::vector<Tensor<1, dim>> normals)
+      {
+        std::sort(normals.begin(),
+                  normals.end(),
+                  [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
+                    return std::lexicographical_compare(a.begin_raw(),
+                                                        a.end_raw(),
+                                                        b.begin_raw(),
+                                                        b.end_raw());
+                  });
+        Tensor<1, dim> n;
+        for (const auto &m : normals)
+          n += m;
+        return n / n.norm();
+      }
+
+
+      // What the Dirichlet lines of a slave node (@p dofs, its faces'
+      // @p normals) hold: a direction along a normal excludes the node
+      // from contact (info.exclude_contact); the directions along the face
+      // and their DoFs are returned; a line to other nodes' DoFs is a
+      // hanging node's (info.hanging). A line of a DoF in @p ignored_pins
+      // is left out.
+      template <int dim>
+      std::pair<std::vector<Tensor<1, dim>>,
+                std::vector<types::global_dof_index>>
+      held_directions(const std::array<types::global_dof_index, dim> &dofs,
+                      const std::vector<Tensor<1, dim>>              &normals,
+                      const AffineConstraints<double>         &u_constraints,
+                      const std::set<types::global_dof_index> *ignored_pins,
+                      NodeInfo                                &info)
+      {
+        std::pair<std::vector<Tensor<1, dim>>,
+                  std::vector<types::global_dof_index>>
+          tangential;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (const auto *entries =
+                u_constraints.get_constraint_entries(dofs[c]))
+            {
+              // The direction a Dirichlet line holds: e_c, or for a line
+              // among the node's own DoFs (a normal, tangential or
+              // direction condition) e_c - sum_j w_j e_j.
+              Tensor<1, dim> held;
+              held[c] = 1;
+              for (const auto &[j, w] : *entries)
+                {
+                  const auto d = std::find(dofs.begin(), dofs.end(), j);
+                  if (d == dofs.end())
+                    {
+                      held = Tensor<1, dim>();
+                      break;
+                    }
+                  held[d - dofs.begin()] -= w;
+                }
+              if (held.norm() == 0)
+                {
+                  if (c == 0)
+                    info.hanging = *entries;
+                  continue;
+                }
+              if (ignored_pins && ignored_pins->count(dofs[c]) > 0)
+                continue;
+              bool along_normal = false;
+              for (const auto &n : normals)
+                along_normal |= std::abs(n * held) > 0.5 * held.norm();
+              if (along_normal)
+                info.exclude_contact = true;
+              else
+                {
+                  tangential.first.push_back(held);
+                  tangential.second.push_back(dofs[c]);
+                }
+            }
+        return tangential;
+      }
+    } // namespace
+
+
     /**
      * What setup() collects from this rank's boundary faces before the
      * multipliers are numbered: the pair each boundary id is slave or master
@@ -308,6 +392,35 @@ namespace Signorini
 
     template <int dim>
     typename Surfaces<dim>::Counts
+    Surfaces<dim>::gather_node_info(
+      const std::vector<std::pair<types::global_dof_index, NodeInfo>> &own)
+    {
+      node_info.clear();
+      pin_nodes.clear();
+      Counts counts;
+      for (const auto &from_rank : Utilities::MPI::all_gather(comm, own))
+        for (const auto &[dof0, info] : from_rank)
+          {
+            counts.n_excluded_contact += info.exclude_contact;
+            counts.n_excluded_friction += info.exclude_friction;
+            counts.n_held_tangent += !info.friction_held.empty();
+            counts.n_hanging += !info.hanging.empty();
+            if (info.pin != numbers::invalid_dof_index)
+              {
+                Pin pin{info.lambda, info.friction, {}};
+                pin.a[0] = 1;
+                for (unsigned int k = 0; k < info.friction_held.size(); ++k)
+                  pin.a[k] = info.friction_held[k];
+                pin_nodes.emplace(info.pin, pin);
+              }
+            node_info.emplace(dof0, info);
+          }
+      return counts;
+    }
+
+
+    template <int dim>
+    typename Surfaces<dim>::Counts
     Surfaces<dim>::number_multipliers(
       const Scan                              &scan,
       const IndexSet                          &owned_u,
@@ -336,82 +449,32 @@ namespace Signorini
         n_displacements + n_lambdas +
         offset_of(n_owned_friction, comm) * (dim - 1);
 
-      // The node's normal: the mean of its faces' (summed in a fixed
-      // order, the same on any rank count).
-      const auto node_normal = [](const typename Scan::SeenNode &node) {
-        auto normals = node.normals;
-        std::sort(normals.begin(),
-                  normals.end(),
-                  [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
-                    return std::lexicographical_compare(a.begin_raw(),
-                                                        a.end_raw(),
-                                                        b.begin_raw(),
-                                                        b.end_raw());
-                  });
-        Tensor<1, dim> n;
-        for (const auto &m : normals)
-          n += m;
-        return Tensor<1, dim>(n / n.norm());
-      };
       std::vector<std::pair<types::global_dof_index, NodeInfo>> own;
       types::global_dof_index                                   jf = 0;
       for (unsigned int j = 0; j < owned_nodes.size(); ++j)
         {
-          const auto                 &node = scan.seen.at(owned_nodes[j]);
-          NodeInfo                    info;
-          std::vector<Tensor<1, dim>> tangential; // held along the face
-          std::vector<types::global_dof_index> tangential_dofs;
-          for (unsigned int c = 0; c < dim; ++c)
-            if (const auto *entries =
-                  u_constraints.get_constraint_entries(node.dofs[c]))
-              {
-                // The direction a Dirichlet line holds: e_c, or for a line
-                // among the node's own DoFs (a normal, tangential or
-                // direction condition) e_c - sum_j w_j e_j. A line to
-                // other nodes' DoFs is a hanging node's.
-                Tensor<1, dim> held;
-                held[c] = 1;
-                for (const auto &[j, w] : *entries)
-                  {
-                    const auto d =
-                      std::find(node.dofs.begin(), node.dofs.end(), j);
-                    if (d == node.dofs.end())
-                      {
-                        held = Tensor<1, dim>();
-                        break;
-                      }
-                    held[d - node.dofs.begin()] -= w;
-                  }
-                if (held.norm() == 0)
-                  {
-                    if (c == 0)
-                      info.hanging = *entries;
-                    continue;
-                  }
-                // A pin against a meshed master holds the node, not the
-                // master point beneath it, which the contact rows still
-                // tie to it: they stay the plain ones (theory.md F8, pins).
-                if (pins.count(node.dofs[c]) > 0 &&
-                    pairs[node.pair].master_is_body())
-                  continue;
-                bool along_normal = false;
-                for (const auto &n : node.normals)
-                  along_normal |= std::abs(n * held) > 0.5 * held.norm();
-                if (along_normal)
-                  info.exclude_contact = true;
-                else
-                  {
-                    tangential.push_back(held);
-                    tangential_dofs.push_back(node.dofs[c]);
-                  }
-              }
-          const bool friction = pairs[node.pair].friction > 0;
-          info.lambda         = lambda_offset + j;
+          const auto &node = scan.seen.at(owned_nodes[j]);
+          NodeInfo    info;
+          // A pin against a meshed master holds the node, not the master
+          // point beneath it, which the contact rows still tie to it:
+          // they stay the plain ones (theory.md F8, pins).
+          const auto held =
+            held_directions<dim>(node.dofs,
+                                 node.normals,
+                                 u_constraints,
+                                 pairs[node.pair].master_is_body() ? &pins :
+                                                                     nullptr,
+                                 info);
+          const auto &tangential      = held.first;
+          const auto &tangential_dofs = held.second;
+          const bool  friction        = pairs[node.pair].friction > 0;
+          info.lambda                 = lambda_offset + j;
           if (friction)
             info.friction = friction_offset + (dim - 1) * jf++;
           if (friction && !info.exclude_contact)
             {
-              const auto a = held_tangent(node_normal(node), tangential);
+              const auto a =
+                held_tangent(mean_normal(node.normals), tangential);
               info.exclude_friction = !a;
               if (a && a->norm() > 0)
                 info.friction_held.assign(a->begin_raw(), a->end_raw());
@@ -426,26 +489,7 @@ namespace Signorini
           info.pair = node.pair;
           own.emplace_back(owned_nodes[j], std::move(info));
         }
-      node_info.clear();
-      pin_nodes.clear();
-      Counts counts;
-      for (const auto &from_rank : Utilities::MPI::all_gather(comm, own))
-        for (const auto &[dof0, info] : from_rank)
-          {
-            counts.n_excluded_contact += info.exclude_contact;
-            counts.n_excluded_friction += info.exclude_friction;
-            counts.n_held_tangent += !info.friction_held.empty();
-            counts.n_hanging += !info.hanging.empty();
-            if (info.pin != numbers::invalid_dof_index)
-              {
-                Pin pin{info.lambda, info.friction, {}};
-                pin.a[0] = 1;
-                for (unsigned int k = 0; k < info.friction_held.size(); ++k)
-                  pin.a[k] = info.friction_held[k];
-                pin_nodes.emplace(info.pin, pin);
-              }
-            node_info.emplace(dof0, info);
-          }
+      Counts counts = gather_node_info(own);
 
       owned = IndexSet(n_system());
       if (n_owned_nodes > 0)

@@ -88,6 +88,81 @@ namespace Signorini
   // converged state and the state at the start of the step (displacements,
   // and the multipliers as a nodal field on the slave surface) are
   // interpolated to the new mesh.
+  // Marks the cells by Kelly's indicator in the energy norm (and the
+  // contact zone), none beyond the maximum level; counts the marked ones
+  // on this rank.
+  template <int dim>
+  void
+  Simulation<dim>::mark_cells(unsigned int &n_refine, unsigned int &n_coarsen)
+  {
+    const auto   &a = parameters.adaptivity;
+    Vector<float> indicator(system.triangulation.n_active_cells());
+    KellyErrorEstimator<dim>::estimate(system.mapping,
+                                       system.dof_handler,
+                                       QGauss<dim - 1>(system.fe.degree + 1),
+                                       {},
+                                       system.solution,
+                                       indicator);
+    // Energy norm: sqrt(E) of the cell's material (bodies of different
+    // stiffness), and sqrt(r) in axisymmetry (the 2 pi r weight).
+    for (const auto &cell : system.triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          double w =
+            materials.at(cell->material_id())->representative_modulus();
+          if (parameters.axisymmetric)
+            w *= std::max(cell->center()[0], cell->diameter());
+          indicator[cell->active_cell_index()] *= std::sqrt(w);
+        }
+    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+      system.triangulation,
+      indicator,
+      a.refinement_fraction,
+      a.coarsening_fraction);
+    if (a.refine_contact_zone && contact.active())
+      mark_contact_zone(contact.contact_output().contact_zone_cells(),
+                        system.triangulation,
+                        mpi_communicator);
+    for (const auto &cell : system.triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          if (cell->refine_flag_set() &&
+              static_cast<unsigned int>(cell->level()) >= maximum_level)
+            cell->clear_refine_flag();
+          n_refine += cell->refine_flag_set() ? 1 : 0;
+          n_coarsen += cell->coarsen_flag_set() ? 1 : 0;
+        }
+  }
+
+
+  // The fields the refinement carries over, in the displacement layout: u
+  // and the multiplier field, now and at the step start.
+  template <int dim>
+  std::vector<TrilinosWrappers::MPI::Vector>
+  Simulation<dim>::fields_to_transfer() const
+  {
+    std::vector<TrilinosWrappers::MPI::Vector> old_vectors;
+    for (const auto *source : {&system.state, &system.state_step_start})
+      {
+        TrilinosWrappers::MPI::Vector u(system.locally_owned, mpi_communicator);
+        TrilinosWrappers::MPI::Vector m(system.locally_owned, mpi_communicator);
+        for (const auto i : system.locally_owned)
+          u[i] = (*source)[i];
+        u.compress(VectorOperation::insert);
+        if (contact.active())
+          contact.contact_surfaces().multipliers_to_field(*source, m);
+        for (const auto *v : {&u, &m})
+          {
+            old_vectors.emplace_back(system.locally_owned,
+                                     system.locally_relevant,
+                                     mpi_communicator);
+            old_vectors.back() = *v;
+          }
+      }
+    return old_vectors;
+  }
+
+
   template <int dim>
   bool
   Simulation<dim>::adapt_mesh(const double time, const double step_start_time)
@@ -106,42 +181,7 @@ namespace Signorini
       transfer(system.dof_handler);
     {
       TimerOutput::Scope t(timer, "adaptation");
-      Vector<float>      indicator(system.triangulation.n_active_cells());
-      KellyErrorEstimator<dim>::estimate(system.mapping,
-                                         system.dof_handler,
-                                         QGauss<dim - 1>(system.fe.degree + 1),
-                                         {},
-                                         system.solution,
-                                         indicator);
-      // Energy norm: sqrt(E) of the cell's material (bodies of different
-      // stiffness), and sqrt(r) in axisymmetry (the 2 pi r weight).
-      for (const auto &cell : system.triangulation.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            double w =
-              materials.at(cell->material_id())->representative_modulus();
-            if (parameters.axisymmetric)
-              w *= std::max(cell->center()[0], cell->diameter());
-            indicator[cell->active_cell_index()] *= std::sqrt(w);
-          }
-      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-        system.triangulation,
-        indicator,
-        a.refinement_fraction,
-        a.coarsening_fraction);
-      if (a.refine_contact_zone && contact.active())
-        mark_contact_zone(contact.contact_output().contact_zone_cells(),
-                          system.triangulation,
-                          mpi_communicator);
-      for (const auto &cell : system.triangulation.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            if (cell->refine_flag_set() &&
-                static_cast<unsigned int>(cell->level()) >= maximum_level)
-              cell->clear_refine_flag();
-            n_refine += cell->refine_flag_set() ? 1 : 0;
-            n_coarsen += cell->coarsen_flag_set() ? 1 : 0;
-          }
+      mark_cells(n_refine, n_coarsen);
       n_refine  = Utilities::MPI::sum(n_refine, mpi_communicator);
       n_coarsen = Utilities::MPI::sum(n_coarsen, mpi_communicator);
       if (n_refine + n_coarsen == 0)
@@ -152,25 +192,7 @@ namespace Signorini
           return false;
         }
 
-      for (const auto *source : {&system.state, &system.state_step_start})
-        {
-          TrilinosWrappers::MPI::Vector u(system.locally_owned,
-                                          mpi_communicator);
-          TrilinosWrappers::MPI::Vector m(system.locally_owned,
-                                          mpi_communicator);
-          for (const auto i : system.locally_owned)
-            u[i] = (*source)[i];
-          u.compress(VectorOperation::insert);
-          if (contact.active())
-            contact.contact_surfaces().multipliers_to_field(*source, m);
-          for (const auto *v : {&u, &m})
-            {
-              old_vectors.emplace_back(system.locally_owned,
-                                       system.locally_relevant,
-                                       mpi_communicator);
-              old_vectors.back() = *v;
-            }
-        }
+      old_vectors = fields_to_transfer();
       std::vector<const TrilinosWrappers::MPI::Vector *> pointers;
       for (const auto &v : old_vectors)
         pointers.push_back(&v);

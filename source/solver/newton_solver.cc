@@ -105,6 +105,37 @@ namespace Signorini
     }
 
 
+    // The evaluation of the full update is its trial, so an accepted full
+    // step costs no extra assembly.
+    Evaluation
+    NewtonSolver::evaluate_trial(NonlinearProblem &problem,
+                                 SearchTrial      &trial,
+                                 bool             &step_exact,
+                                 Result           &result) const
+    {
+      const bool search     = trial.pending;
+      trial.pending         = false;
+      const auto saved      = search ? problem.save() : nullptr;
+      Evaluation evaluation = problem.evaluate(false);
+      if (!search)
+        return evaluation;
+      const double r_full = norm_of(evaluation.block);
+      // A non-finite trial (at finite strain: an element turned inside out
+      // by the full update) is backtracked too.
+      if (std::isfinite(r_full) && r_full <= (1 - 1e-4) * trial.residual)
+        return evaluation;
+      problem.restore(*saved);
+      const double alpha = line_search(
+        problem, trial.base, trial.update, trial.residual, r_full, result);
+      if (alpha < 1)
+        step_exact = false;
+      TrilinosWrappers::MPI::Vector owned = trial.base;
+      owned.add(alpha, trial.update);
+      problem.set_iterate(owned);
+      return problem.evaluate(false);
+    }
+
+
     // The iteration: evaluate (the trial of the last full update first,
     // with the line search if it made the residual grow), judge, then
     // release frozen statuses or solve and update.
@@ -118,49 +149,17 @@ namespace Signorini
       bool   settled_before  = false;
       // The iterate is the result of an exact Newton step: a direct solve,
       // the full update, with the statuses of its evaluation.
-      bool step_exact = false;
-      // Line search: the last solve's base, update and residual, tried at
-      // the next evaluation.
-      bool                          search_pending = false;
-      TrilinosWrappers::MPI::Vector search_base, search_update;
-      double                        search_residual = 0;
-      std::string                   held_motions;
-      std::vector<double>           residuals; // relative, per iterate
-      Evaluation                    evaluation;
+      bool                step_exact = false;
+      SearchTrial         search; // the line search of the last update
+      std::string         held_motions;
+      std::vector<double> residuals; // relative, per iterate
+      Evaluation          evaluation;
       for (unsigned int it = 0; it <= parameters.max_iterations; ++it)
         {
           result.iterations = it;
           if (it == 0)
             problem.start_solve();
-          // The evaluation of the full update is its trial, so an
-          // accepted full step costs no extra assembly.
-          const bool search = search_pending;
-          search_pending    = false;
-          const auto saved  = search ? problem.save() : nullptr;
-          evaluation        = problem.evaluate(false);
-          if (search)
-            {
-              const double r_full = norm_of(evaluation.block);
-              // A non-finite trial (at finite strain: an element turned
-              // inside out by the full update) is backtracked too.
-              if (!std::isfinite(r_full) ||
-                  r_full > (1 - 1e-4) * search_residual)
-                {
-                  problem.restore(*saved);
-                  const double alpha = line_search(problem,
-                                                   search_base,
-                                                   search_update,
-                                                   search_residual,
-                                                   r_full,
-                                                   result);
-                  if (alpha < 1)
-                    step_exact = false;
-                  TrilinosWrappers::MPI::Vector owned = search_base;
-                  owned.add(alpha, search_update);
-                  problem.set_iterate(owned);
-                  evaluation = problem.evaluate(false);
-                }
-            }
+          evaluation = evaluate_trial(problem, search, step_exact, result);
           const double residual = norm_of(evaluation.block);
           force_level           = std::max(force_level, evaluation.force);
           const Verdict verdict = judge(evaluation,
@@ -220,12 +219,7 @@ namespace Signorini
           held_motions                        = step.held_motions;
           TrilinosWrappers::MPI::Vector owned = problem.iterate();
           if (parameters.line_search_steps > 0 && !step.prescribes_values)
-            {
-              search_pending  = true;
-              search_base     = owned;
-              search_update   = step.update;
-              search_residual = residual;
-            }
+            search = {true, owned, step.update, residual};
           owned.add(1., step.update);
           problem.set_iterate(owned);
           step_exact = step.exact;

@@ -124,6 +124,34 @@ namespace Signorini
                      const TrilinosWrappers::MPI::Vector        &weight_state,
                      PointEvaluation                            &e);
 
+      /** The kinematics of evaluate_point(): position and increment of the
+       * point, its multipliers, the projection and normal of an obstacle
+       * with Newton on the geometry (written into @p point), gap and
+       * slip. */
+      void
+      point_kinematics(ContactPoint                               &point,
+                       const std::vector<types::global_dof_index> &cell_dofs,
+                       const TrilinosWrappers::MPI::Vector        &state,
+                       const TrilinosWrappers::MPI::Vector        &start,
+                       const TrilinosWrappers::MPI::Vector        &weight_state,
+                       PointEvaluation                            &e);
+
+      /** The law's flags for @p point (anti-cycling freezes, release,
+       * held tangents, all tangents held at a pinned node); true if the
+       * point is at a pinned node. */
+      bool
+      law_input(const ContactPoint &point, PointEvaluation &e) const;
+
+      /** The face's node statuses and multipliers for the node rows, the
+       * label of a pinned point, and the friction force of the nodes with
+       * statuses per node. */
+      void
+      node_friction(const ContactPoint                  &point,
+                    const bool                           pinned,
+                    const TrilinosWrappers::MPI::Vector &state,
+                    const TrilinosWrappers::MPI::Vector &weight_state,
+                    PointEvaluation                     &e);
+
       /** Counts the status of an evaluated point into @p stats, runs its
        * anti-cycling at a new iterate, and stores its status and output
        * values. */

@@ -147,6 +147,13 @@ namespace Signorini
       contact_zone_cells() const;
 
     private:
+      /** The normal and tangential forces of the node-status pairs from
+       * the per-node sums @p nodal (force, then normal; compressed here),
+       * each owned node once, into @p result. */
+      void
+      add_node_forces(std::vector<TrilinosWrappers::MPI::Vector> &nodal,
+                      std::vector<PairSummary>                   &result) const;
+
       /** The status of a multiplier node of a pair with statuses per node,
        * as a PointStatus value. */
       double

@@ -279,6 +279,11 @@ namespace Signorini
       /** Face size and moduli per pair, over all ranks. */
       void
       sum_pair_scales(const Scan &scan);
+      /** Every rank's slave nodes (@p own: this rank's) into node_info
+       * and pin_nodes, counted. */
+      Counts
+      gather_node_info(
+        const std::vector<std::pair<types::global_dof_index, NodeInfo>> &own);
       /** Numbers the multipliers of the owned slave nodes after the
        * displacements, decides their exclusions and hanging weights, and
        * gathers every node's from all ranks. */
@@ -318,7 +323,7 @@ namespace Signorini
       // and multipliers.
       IndexSet owned, owned_system, extra, ghost_multipliers;
       std::map<types::global_dof_index, NodeInfo> node_info; // key: x-dof
-      // Written with node_info (number_multipliers).
+      // Written with node_info (gather_node_info).
       std::map<types::global_dof_index, Pin> pin_nodes;
       std::vector<SlaveFace<dim>>            slaves;
       std::vector<MasterFace<dim>>           masters;

@@ -152,6 +152,14 @@ namespace Signorini
      * marked. */
     bool
     adapt_mesh(const double time, const double step_start_time);
+    /** Sets the refinement and coarsening flags of adapt_mesh(); counts
+     * this rank's marked cells into @p n_refine and @p n_coarsen. */
+    void
+    mark_cells(unsigned int &n_refine, unsigned int &n_coarsen);
+    /** u and the multiplier field, now and at the step start, in the
+     * displacement layout (with ghosts), for the solution transfer. */
+    std::vector<TrilinosWrappers::MPI::Vector>
+    fields_to_transfer() const;
     /** Stops the run (RunError) if the prepared refinement flags would
      * exceed 'Geometry/Maximum number of cells'. */
     void

@@ -110,6 +110,23 @@ namespace Signorini
             const bool         step_exact,
             bool              &settled_before,
             double            &residual_before) const;
+      /** The last solve's base, update and residual, tried at the next
+       * evaluation (a line search is pending if @p pending). */
+      struct SearchTrial
+      {
+        bool                          pending = false;
+        TrilinosWrappers::MPI::Vector base, update;
+        double                        residual = 0;
+      };
+      /** Evaluates the iterate, which is the full update of a pending
+       * @p trial: if its residual did not fall, the line search's iterate
+       * instead (then @p step_exact is false unless the whole step was
+       * taken). */
+      Evaluation
+      evaluate_trial(NonlinearProblem &problem,
+                     SearchTrial      &trial,
+                     bool             &step_exact,
+                     Result           &result) const;
       /** Backtracking after a full update that made the residual grow from
        * @p residual_now to @p residual_full: the fraction of @p update
        * from @p base to take. */
