@@ -625,7 +625,9 @@ namespace Signorini
     prm.declare_entry("Dimension",
                       "2",
                       Patterns::Integer(2, 3),
-                      "Space dimension: 2 (plane strain) or 3.");
+                      "Space dimension: 2 (plane strain, or plane stress "
+                      "with 'Plane stress', or axisymmetric with "
+                      "'Axisymmetric') or 3.");
     prm.declare_entry(shared_libraries_entry,
                       "",
                       Patterns::List(Patterns::FileName()),
@@ -640,6 +642,16 @@ namespace Signorini
                       "totals over the full circumference [N]. Put a "
                       "Dirichlet condition on x (= u_r = 0) on the faces on "
                       "the axis r = 0.");
+    prm.declare_entry("Plane stress",
+                      "false",
+                      Patterns::Bool(),
+                      "Dimension = 2 only: the stress normal to the plane is "
+                      "zero (thin parts, plates loaded in their plane) "
+                      "instead of the strain (plane strain). Every "
+                      "small-strain model runs so: at each point the normal "
+                      "strain is solved for sigma_33 = 0 with the model's "
+                      "own stress and tangent (also in plasticity). Forces "
+                      "are per unit thickness, as in plane strain.");
     prm.enter_subsection("Finite element");
     prm.declare_entry("Degree",
                       "1",
@@ -689,6 +701,7 @@ namespace Signorini
   {
     dimension    = prm.get_integer("Dimension");
     axisymmetric = prm.get_bool("Axisymmetric");
+    plane_stress = prm.get_bool("Plane stress");
     prm.enter_subsection("Finite element");
     fe_degree                   = prm.get_integer("Degree");
     projected_volumetric_strain = prm.get("Volumetric strain") == "projected";

@@ -229,6 +229,15 @@ namespace Signorini
       throw InputError("parameter 'Axisymmetric': an axisymmetric model is a "
                        "2D meridian section; set 'Dimension = 2' or "
                        "'Axisymmetric = false'.");
+    if (plane_stress && (dimension != 2 || axisymmetric))
+      throw InputError("parameter 'Plane stress': it is a 2D model of a "
+                       "thin part; set 'Dimension = 2' and 'Axisymmetric = "
+                       "false', or 'Plane stress = false'.");
+    if (plane_stress && projected_volumetric_strain)
+      throw InputError("subsection 'Finite element', parameter 'Volumetric "
+                       "strain': in plane stress the volume change goes "
+                       "into the strain normal to the plane, so nothing "
+                       "locks; set 'Volumetric strain = full'.");
     if (!c.pairs.empty() && fe_degree > 2)
       throw InputError("subsection 'Finite element', parameter 'Degree': "
                        "contact supports Q1 and Q2 slave and master faces; "

@@ -223,7 +223,10 @@ namespace Signorini
       const unsigned int    n = fe.n_dofs_per_cell();
       SymmetricTensor<2, 3> stress;
       SymmetricTensor<4, 3> C;
-      material.evaluate(k.strain[q], history, stress, matrix ? &C : nullptr);
+      material.evaluate_completed(k.strain[q],
+                                  history,
+                                  stress,
+                                  matrix ? &C : nullptr);
       const auto &B = k.B[q];
       for (unsigned int i = 0; i < n; ++i)
         f_int(i) += (stress * B[i]) * k.dV[q];
@@ -431,7 +434,9 @@ namespace Signorini
                 material.update_history_finite_strain(k.F_bar[q],
                                                       cell_history[q]);
               else
-                material.update_history(k.strain[q], cell_history[q]);
+                material.update_history(
+                  material.completed_strain(k.strain[q], cell_history[q]),
+                  cell_history[q]);
           }
     }
 

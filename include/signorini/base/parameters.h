@@ -327,6 +327,7 @@ namespace Signorini
   {
     unsigned int dimension;
     bool         axisymmetric; // 2D: x = r, y = z
+    bool         plane_stress; // 2D: sigma_33 = 0 (else plane strain)
     unsigned int fe_degree;
     bool         projected_volumetric_strain; // B-bar: theta projected per cell
     GeometryParameters              geometry;

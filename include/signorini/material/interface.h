@@ -25,8 +25,10 @@
  * Every model works with 3D tensors: in 2D the component (2, 2) of the
  * strain is the strain normal to the plane, 0 in plane strain and the hoop
  * strain u_r / r in an axisymmetric model, and the stress normal to the
- * plane comes back in the same component. A model is written once for
- * plane strain, axisymmetry and 3D, and models with an inelastic strain
+ * plane comes back in the same component. In plane stress the caller
+ * evaluates through evaluate_completed(), which finds the eps_33 of
+ * sigma_33 = 0 with the model's own stress and tangent. A model is written once
+ * for plane strain, axisymmetry and 3D, and models with an inelastic strain
  * (plasticity) keep all its components.
  *
  * Every solid model of this family has an elastic part: 'Young's modulus'
@@ -189,6 +191,43 @@ namespace Signorini
         used_kinematics = kinematics;
       }
 
+      /** Plane stress (2D, the top-level 'Plane stress'; set by
+       * make_materials()): the stress normal to the plane is zero and the
+       * strain normal to it follows (small strain). */
+      void
+      set_plane_stress(const bool on)
+      {
+        in_plane_stress = on;
+      }
+
+      bool
+      plane_stress() const
+      {
+        return in_plane_stress;
+      }
+
+      /**
+       * The 3D small strain of a point, completed: in plane stress
+       * @p strain with the component (2, 2) at which the model's stress
+       * sigma_33 is zero (Newton on sigma_33 with the model's tangent from
+       * the given eps_33), otherwise @p strain itself. Any small-strain
+       * model, with history (plasticity) too, is so run in plane stress.
+       */
+      SymmetricTensor<2, 3>
+      completed_strain(const SymmetricTensor<2, 3>   &strain,
+                       const ArrayView<const double> &history) const;
+
+      /**
+       * evaluate() at the completed strain of a point; in plane stress the
+       * tangent is condensed to the in-plane strains at sigma_33 = 0:
+       * C - (C : E_33) (E_33 : C) / C_3333, E_33 = e_3 e_3.
+       */
+      void
+      evaluate_completed(const SymmetricTensor<2, 3>   &strain,
+                         const ArrayView<const double> &history,
+                         SymmetricTensor<2, 3>         &stress,
+                         SymmetricTensor<4, 3>         *tangent) const;
+
       /**
        * Small strain: the Cauchy stress at a point for the 3D small strain
        * @p strain [Pa], and if @p tangent is given its derivative
@@ -245,10 +284,11 @@ namespace Signorini
         if (used_kinematics == Kinematics::small_strain)
           {
             const SymmetricTensor<2, 3> strain = symmetrize(H);
-            evaluate(theta_bar ? with_volumetric(strain, *theta_bar) : strain,
-                     history,
-                     stress,
-                     nullptr);
+            evaluate_completed(theta_bar ? with_volumetric(strain, *theta_bar) :
+                                           strain,
+                               history,
+                               stress,
+                               nullptr);
           }
         else
           {
@@ -345,6 +385,7 @@ namespace Signorini
     protected:
       double     E = 0, nu = 0, lambda = 0, mu = 0;
       Kinematics used_kinematics = Kinematics::small_strain;
+      bool       in_plane_stress = false;
     };
 
     /** The registry of the family (dim 2 and 3 share the names). */
