@@ -5,7 +5,7 @@
 
 The features (factors) and their levels:
 
-  model        plane strain | axisymmetric | 3D
+  model        plane strain | plane stress | axisymmetric | 3D
   material     every registered 'Model' (asked from the program)
   kinematics   every 'Kinematics'
   volumetric   every 'Volumetric strain'
@@ -84,7 +84,7 @@ def registered(exe, path, workdir):
 
 def factors(exe, workdir):
     return [
-        ("model", ["plane strain", "axisymmetric", "3D"]),
+        ("model", ["plane strain", "plane stress", "axisymmetric", "3D"]),
         ("material", registered(exe, "Materials/Material 1/Model", workdir)),
         ("kinematics", registered(exe, "Materials/Material 1/Kinematics", workdir)),
         ("volumetric", registered(exe, "Finite element/Volumetric strain", workdir)),
@@ -161,6 +161,8 @@ class Scene:
         self.set("Dimension", dim)
         if r["model"] == "axisymmetric":
             self.set("Axisymmetric", "true")
+        if r["model"] == "plane stress":
+            self.set("Plane stress", "true")
         two = r["master"] == "body"
         slave = 2 if two else 1
         self.set("Geometry/Number of bodies", 2 if two else 1)
@@ -357,7 +359,7 @@ def default_row(fs):
 # a rule without Q2, a solver without contact, ...); the others are taken
 # as possible, and a row the program refuses all the same is not run.
 PROBED = [("material", "kinematics"), ("material", "volumetric"), ("kinematics", "volumetric"),
-          ("material", "model"), ("kinematics", "model"), ("rule", "degree"), ("rule", "model"),
+          ("material", "model"), ("kinematics", "model"), ("volumetric", "model"), ("rule", "degree"), ("rule", "model"),
           ("master", "model"), ("master", "rule"), ("solver", "model"), ("solver", "friction"),
           ("solver", "master"), ("adaptivity", "rule")]
 
@@ -501,7 +503,22 @@ def check_row(exe, mpiexec, row, directory):
 
 # Defects this layer found that are still open: a row they match is run
 # and must still fail (if it passes, the defect is gone: remove it here).
-KNOWN = []
+KNOWN = [
+    # Found when 'plane stress' joined the model levels (the covering
+    # changed): a homogeneous deformation (Dirichlet along the normal on
+    # a flat master, no friction) is exact on any mesh, so Kelly's
+    # indicator is round-off; the refinement fraction then marks cells by
+    # that noise, which the mm variant changes (5 against 6 cells
+    # refined). Forces, pressures and motion agree exactly; the mean
+    # displacement of the Dirichlet boundary, an average over its nodes,
+    # follows the mesh (5e-3). The remedy is an indicator floor at the
+    # round-off of the solution's gradient (not made yet).
+    (lambda r: r["adaptivity"] == "one cycle" and r["invariant"] == "units"
+     and r["load"] == "Dirichlet normal" and r["master"] == "plane"
+     and r["friction"] == "0",
+     "Kelly marks round-off on an exact homogeneous solution (adaptivity "
+     "+ units)"),
+]
 
 
 def known(row):
