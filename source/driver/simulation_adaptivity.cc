@@ -5,6 +5,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/rtree.h>
 
@@ -79,6 +80,30 @@ namespace Signorini
                 }
           }
     }
+
+    // The largest displacement gradient |grad u| at the cell centres, over
+    // all ranks: the scale of the round-off of Kelly's gradient jumps.
+    template <int dim>
+    double
+    largest_gradient(const Mapping<dim>                  &mapping,
+                     const FiniteElement<dim>            &fe,
+                     const DoFHandler<dim>               &dof_handler,
+                     const TrilinosWrappers::MPI::Vector &solution,
+                     const MPI_Comm                       comm)
+    {
+      FEValues<dim> values(mapping, fe, QGauss<dim>(1), update_gradients);
+      std::vector<Tensor<2, dim>>      gradient(1);
+      const FEValuesExtractors::Vector displacement(0);
+      double                           largest = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            values.reinit(cell);
+            values[displacement].get_function_gradients(solution, gradient);
+            largest = std::max(largest, gradient[0].norm());
+          }
+      return Utilities::MPI::max(largest, comm);
+    }
   } // namespace
 
 
@@ -103,6 +128,11 @@ namespace Signorini
                                        {},
                                        system.solution,
                                        indicator);
+    const double gradient_scale = largest_gradient(system.mapping,
+                                                   system.fe,
+                                                   system.dof_handler,
+                                                   system.solution,
+                                                   mpi_communicator);
     // Energy norm: sqrt(E) of the cell's material (bodies of different
     // stiffness), and sqrt(r) in axisymmetry (the 2 pi r weight).
     for (const auto &cell : system.triangulation.active_cell_iterators())
@@ -113,12 +143,26 @@ namespace Signorini
           if (parameters.axisymmetric)
             w *= std::max(cell->center()[0], cell->diameter());
           indicator[cell->active_cell_index()] *= std::sqrt(w);
+          // Where the solution is exact on the mesh (a homogeneous
+          // deformation) the gradient jumps, and so the indicator, are
+          // round-off: marking by them would refine cells by noise, which
+          // the units or the ranks change. Below 1e-10 of the gradient's
+          // scale (round-off is about 1e-15 of it) the indicator is zero.
+          const double floor = 1e-10 * gradient_scale * std::sqrt(w) *
+                               std::pow(cell->diameter(), 0.5 * dim);
+          if (indicator[cell->active_cell_index()] < floor)
+            indicator[cell->active_cell_index()] = 0;
         }
-    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-      system.triangulation,
-      indicator,
-      a.refinement_fraction,
-      a.coarsening_fraction);
+    float largest = 0;
+    for (const auto &cell : system.triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        largest = std::max(largest, indicator[cell->active_cell_index()]);
+    if (Utilities::MPI::max(largest, mpi_communicator) > 0)
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+        system.triangulation,
+        indicator,
+        a.refinement_fraction,
+        a.coarsening_fraction);
     if (a.refine_contact_zone && contact.active())
       mark_contact_zone(contact.contact_output().contact_zone_cells(),
                         system.triangulation,

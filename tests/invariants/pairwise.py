@@ -503,22 +503,7 @@ def check_row(exe, mpiexec, row, directory):
 
 # Defects this layer found that are still open: a row they match is run
 # and must still fail (if it passes, the defect is gone: remove it here).
-KNOWN = [
-    # Found when 'plane stress' joined the model levels (the covering
-    # changed): a homogeneous deformation (Dirichlet along the normal on
-    # a flat master, no friction) is exact on any mesh, so Kelly's
-    # indicator is round-off; the refinement fraction then marks cells by
-    # that noise, which the mm variant changes (5 against 6 cells
-    # refined). Forces, pressures and motion agree exactly; the mean
-    # displacement of the Dirichlet boundary, an average over its nodes,
-    # follows the mesh (5e-3). The remedy is an indicator floor at the
-    # round-off of the solution's gradient (not made yet).
-    (lambda r: r["adaptivity"] == "one cycle" and r["invariant"] == "units"
-     and r["load"] == "Dirichlet normal" and r["master"] == "plane"
-     and r["friction"] == "0",
-     "Kelly marks round-off on an exact homogeneous solution (adaptivity "
-     "+ units)"),
-]
+KNOWN = []
 
 
 def known(row):
